@@ -1,0 +1,29 @@
+// bounce: real-time global illumination by photon mapping. The command-line entry point.
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <exception>
+
+#include "bounce/core/error.h"
+#include "options.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"bounce: real-time global illumination by photon mapping"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Show help for every command");
+  bounce::app::add_render_command(app);
+  bounce::app::add_info_command(app);
+  bounce::app::add_bench_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const bounce::Error& e) {
+    fmt::print(stderr, "bounce: error: {}\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "bounce: internal error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+// Options shared by the commands that render frames (render, bench, ...).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+#include "bounce/render/renderer.h"
+
+namespace bounce::app {
+
+struct FrameOptions {
+  std::string scene = "cornell";
+  std::string technique = "direct";
+  int width = 512;
+  int height = 512;
+  int light_samples = 16;
+  float exposure_ev = 0.0f;
+  uint32_t seed = 0;
+  int threads = 0;
+  std::vector<std::string> params;
+
+  FrameSettings settings() const;
+};
+
+// Adds [SCENE] and the frame options to a command.
+void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
+// Creates the technique and applies --param assignments to it (throws Error on a bad one).
+std::unique_ptr<Technique> make_configured_technique(const FrameOptions& options);
+
+// Command registration: each command lives in its own file.
+void add_render_command(CLI::App& app);
+void add_info_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+
+}  // namespace bounce::app

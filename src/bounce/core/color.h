@@ -1,0 +1,37 @@
+// sRGB transfer functions and luminance: the one place PNG input and output convert colours.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "bounce/core/math.h"
+
+namespace bounce {
+
+// Linear -> sRGB-encoded value (IEC 61966-2-1 OETF); negative inputs stay on the linear segment.
+inline float srgb_encode(float linear) {
+  if (linear <= 0.0031308f) return 12.92f * linear;
+  return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+// sRGB-encoded value -> linear (the exact inverse of srgb_encode).
+inline float srgb_decode(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+// Relative luminance of a linear colour with Rec. 709 / sRGB primaries.
+inline float luminance(vec3 rgb) {
+  return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
+}
+
+// Scales, clamps to [0, 1] and encodes one linear channel as an 8-bit sRGB value. NaN maps to 0
+// so that a bad pixel shows as black instead of reaching an undefined float-to-int conversion.
+inline uint8_t srgb8_from_linear(float linear, float scale) {
+  float v = linear * scale;
+  if (!(v > 0.0f)) v = 0.0f;
+  if (v > 1.0f) v = 1.0f;
+  return static_cast<uint8_t>(std::lround(255.0f * srgb_encode(v)));
+}
+
+}  // namespace bounce

@@ -1,0 +1,26 @@
+// Reading and writing images: PNG/JPEG/TGA/BMP (8-bit sRGB), OpenEXR and PFM (linear float).
+// Every failure throws Error with the path and the problem; every save is atomic (a temporary file
+// in the same directory renamed over the target), so a failed save leaves no partial file behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "bounce/core/image.h"
+
+namespace bounce {
+
+// Loads an image as linear RGB, choosing the format by the (case-insensitive) extension:
+// .png/.jpg/.jpeg/.tga/.bmp are decoded from sRGB (alpha is dropped), .exr reads the R, G and B
+// channels, .pfm reads colour ("PF") and greyscale ("Pf") files.
+Image load_image(const std::string& path);
+
+// Saves an image by extension: .png is scaled by 2^exposure_ev, clamped and sRGB-encoded to 8 bits;
+// .exr (32-bit float R, G, B, ZIP) and .pfm are linear and unclamped, ignoring the exposure.
+void save_image(const std::string& path, const Image& image, float exposure_ev = 0.0f);
+
+// Saves an already tone-mapped 8-bit RGB buffer (width * height * 3 bytes, row-major, top row
+// first) as a PNG.
+void save_png_rgb8(const std::string& path, int width, int height, const uint8_t* rgb);
+
+}  // namespace bounce

@@ -1,0 +1,52 @@
+// parallel_for: the one way bounce spreads work over cores. Kernels are plain callables over an
+// index (or a tile), so the same bodies can later be launched by a CUDA backend.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+namespace bounce {
+
+// Calls body(i) for every i in [0, n). Work is chunked by `grain` indices.
+template <typename Body>
+void parallel_for(size_t n, Body&& body, size_t grain = 256) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+                    });
+}
+
+// Calls body(x0, y0, x1, y1) for every tile of a width x height image (tile x tile pixels).
+template <typename Body>
+void parallel_for_tiles(int width, int height, int tile, Body&& body) {
+  const int tiles_x = (width + tile - 1) / tile;
+  const int tiles_y = (height + tile - 1) / tile;
+  tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+                    [&](const tbb::blocked_range<int>& r) {
+                      for (int t = r.begin(); t != r.end(); ++t) {
+                        const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+                        body(x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height));
+                      }
+                    });
+}
+
+// Limits the worker threads while alive (0 = no limit); used by --threads and determinism tests.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads) {
+    if (threads > 0)
+      control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                       size_t(threads));
+  }
+
+ private:
+  std::unique_ptr<tbb::global_control> control_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,45 @@
+// The G-buffer: what primary rays see at each pixel, as a structure of arrays.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "bounce/core/math.h"
+
+namespace bounce {
+
+inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
+
+struct GBuffer {
+  int width = 0;
+  int height = 0;
+  std::vector<vec3> position;          // world-space hit point
+  std::vector<vec3> normal;            // shading normal, facing the camera
+  std::vector<vec3> geometric_normal;  // face normal, facing the camera
+  std::vector<vec3> albedo;            // diffuse albedo (texture applied)
+  std::vector<float> roughness;        // GGX perceptual roughness
+  std::vector<vec3> f0;                // specular reflectance at normal incidence
+  std::vector<vec3> emission;          // radiance emitted towards the camera (0 for back faces)
+  std::vector<float> depth;            // distance along the view axis; infinity on a miss
+  std::vector<uint32_t> primitive;  // global triangle id (Scene::triangle_offsets), or kNoPrimitive
+
+  void resize(int w, int h);
+  size_t size() const { return size_t(width) * height; }
+  bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
+};
+
+}  // namespace bounce
+
+#include "bounce/scene/camera.h"
+#include "bounce/scene/scene.h"
+#include "bounce/trace/tracer.h"
+
+namespace bounce {
+
+// Fills the G-buffer (already sized) with one primary ray per pixel through sub-pixel position
+// `subpixel` in [0, 1)^2 ((0.5, 0.5) is the centre). Returns the number of rays traced.
+uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,
+                       vec2 subpixel, GBuffer& g);
+
+}  // namespace bounce

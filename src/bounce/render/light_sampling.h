@@ -1,0 +1,127 @@
+// Sampling the light arriving at a surface point from each kind of light. Plain functions over
+// plain data, shared by the direct-light stage, the path tracer and (later) CUDA kernels.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bounce/core/math.h"
+#include "bounce/core/sampling.h"
+#include "bounce/render/brdf.h"
+#include "bounce/scene/scene.h"
+
+namespace bounce {
+
+// Light arriving at p from one sample: the contribution to outgoing radiance is
+// f(wo, wi) * cos(n, wi) * weight, if a shadow ray from p along wi over `distance` is clear.
+struct LightSample {
+  vec3 wi{0.0f};  // unit direction towards the light
+  float distance = 0.0f;
+  vec3 weight{0.0f};  // radiance / pdf (solid angle), or I / d^2, or E for a directional light
+  float pdf = 0.0f;   // solid-angle pdf of wi; 0 for point, spot and directional lights
+
+  bool valid() const { return max_component(weight) > 0.0f; }
+};
+
+// Point, spot and directional lights: one deterministic sample.
+inline LightSample sample_punctual_light(const Light& light, vec3 p) {
+  LightSample s;
+  if (light.type == LightType::kDirectional) {
+    s.wi = -light.direction;
+    s.distance = std::numeric_limits<float>::infinity();
+    s.weight = light.irradiance;
+    return s;
+  }
+  const vec3 to_light = light.position - p;
+  const float d2 = glm::dot(to_light, to_light);
+  if (d2 <= 0.0f) return s;
+  s.distance = std::sqrt(d2);
+  s.wi = to_light / s.distance;
+  s.weight = light.intensity / d2;
+  if (light.type == LightType::kSpot) s.weight *= spot_falloff(light, -s.wi);
+  return s;
+}
+
+// Sphere light: a direction uniform in the cone the sphere subtends (exact solid-angle pdf).
+inline LightSample sample_sphere_light(const Light& light, vec3 p, vec2 u) {
+  LightSample s;
+  const vec3 to_centre = light.position - p;
+  const float d2 = glm::dot(to_centre, to_centre);
+  const float r2 = light.radius * light.radius;
+  if (d2 <= r2) return s;  // inside the light: it is not a surface we shade against
+  const float d = std::sqrt(d2);
+  const float sin2_max = r2 / d2;
+  const float cos_max = std::sqrt(1.0f - sin2_max);
+  const float one_minus_cos = sin2_max / (1.0f + cos_max);  // stable for small spheres
+  const vec3 local = sample_uniform_cone(u, cos_max);
+  s.wi = Basis::from_normal(to_centre / d).to_world(local);
+  const float b = glm::dot(s.wi, to_centre);
+  s.distance = b - std::sqrt(glm::max(0.0f, b * b - (d2 - r2)));
+  s.pdf = 1.0f / (kTwoPi * one_minus_cos);
+  s.weight = light.radiance / s.pdf;
+  return s;
+}
+
+// Area light made of emissive triangles: u.x picks a triangle by area (and is reused inside
+// it, which keeps stratification), then a uniform point on it. One-sided emission.
+inline LightSample sample_area_light(const Scene& scene, const AreaLight& light, vec3 p, vec2 u) {
+  LightSample s;
+  const auto it = std::lower_bound(light.cdf.begin(), light.cdf.end(), u.x);
+  const size_t k = std::min(size_t(it - light.cdf.begin()), light.cdf.size() - 1);
+  const float lo = k == 0 ? 0.0f : light.cdf[k - 1];
+  const float span = light.cdf[k] - lo;
+  const vec2 v(span > 0.0f ? glm::clamp((u.x - lo) / span, 0.0f, 0.99999994f) : 0.5f, u.y);
+  const TriangleRef ref = light.triangles[k];
+  const Mesh& mesh = scene.meshes[ref.mesh];
+  const uvec3 tri = mesh.triangles[ref.triangle];
+  const vec2 b = sample_uniform_triangle(v);
+  const vec3 q = (1.0f - b.x - b.y) * mesh.positions[tri.x] + b.x * mesh.positions[tri.y] +
+                 b.y * mesh.positions[tri.z];
+  const vec3 to_light = q - p;
+  const float d2 = glm::dot(to_light, to_light);
+  if (d2 <= 0.0f) return s;
+  s.distance = std::sqrt(d2);
+  s.wi = to_light / s.distance;
+  const float cos_light = -glm::dot(glm::normalize(mesh.face_normal_area2(ref.triangle)), s.wi);
+  if (cos_light <= 0.0f) return s;  // behind the emitting face
+  s.pdf = d2 / (cos_light * light.area);
+  s.weight = light.radiance / s.pdf;
+  return s;
+}
+
+// Solid-angle pdf with which sample_area_light picks direction wi reaching point q on triangle
+// `ref` (for multiple importance sampling in the path tracer).
+inline float area_light_pdf(const Scene& scene, const AreaLight& light, vec3 p, vec3 q,
+                            vec3 light_face_normal) {
+  const vec3 d = q - p;
+  const float d2 = glm::dot(d, d);
+  const float cos_light = -glm::dot(light_face_normal, d / std::sqrt(d2));
+  return cos_light > 0.0f ? d2 / (cos_light * light.area) : 0.0f;
+}
+
+// Unshadowed GGX specular from a sphere light by Karis' representative point with the widened
+// lobe's energy normalisation (seed 000 §5.2.1, Listings 5.1-5.2). Returns outgoing radiance.
+inline vec3 sphere_light_specular(const Light& light, const SurfacePoint& s, vec3 p, vec3 wo) {
+  if (max_component(s.f0) <= 0.0f) return vec3(0.0f);
+  const vec3 l = light.position - p;
+  const float distance = glm::length(l);
+  if (distance <= light.radius) return vec3(0.0f);
+  const vec3 r = glm::reflect(-wo, s.normal);
+  const vec3 centre_to_ray = glm::dot(l, r) * r - l;
+  const float ctr_len = glm::length(centre_to_ray);
+  const vec3 rep =
+      l + centre_to_ray * (ctr_len > 0.0f ? glm::clamp(light.radius / ctr_len, 0.0f, 1.0f) : 0.0f);
+  const vec3 wi = glm::normalize(rep);
+  const float n_dot_l = glm::dot(s.normal, wi);
+  if (n_dot_l <= 0.0f) return vec3(0.0f);
+  const float a = sqr(glm::max(s.roughness, kMinRoughness));
+  const float aa = glm::clamp(a + light.radius / (2.0f * distance), 0.0f, 1.0f);
+  const float normalisation = sqr(a / aa);
+  // The sphere seen as a point: intensity = radiance * projected area.
+  const vec3 intensity = light.radiance * (kPi * light.radius * light.radius);
+  return ggx_specular(s.normal, wo, wi, s.roughness, s.f0) * intensity * n_dot_l * normalisation /
+         sqr(distance);
+}
+
+}  // namespace bounce

@@ -1,0 +1,59 @@
+// The frame pipeline: scene -> G-buffer (primary rays) -> direct light (shadow rays) ->
+// technique.indirect -> composite -> tone map. Every stage is timed under its own name.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bounce/core/image.h"
+#include "bounce/core/timer.h"
+#include "bounce/render/gbuffer.h"
+#include "bounce/render/technique.h"
+#include "bounce/scene/scene.h"
+#include "bounce/trace/tracer.h"
+
+namespace bounce {
+
+struct FrameSettings {
+  int width = 512;
+  int height = 512;
+  int light_samples = 16;    // stratified samples per area light per pixel per frame
+  float exposure_ev = 0.0f;  // tone-map exposure in stops
+  bool jitter = false;       // sub-pixel jitter of primary rays (for accumulation)
+  uint32_t seed = 0;         // decorrelates sample patterns between runs
+};
+
+struct Frame {
+  GBuffer gbuffer;
+  Image direct;              // direct light plus emitters seen directly
+  Image indirect;            // the technique's indirect radiance
+  Image color;               // linear composite
+  std::vector<uint8_t> ldr;  // tone-mapped sRGB, 3 bytes per pixel
+  StageTimes times;
+  uint64_t primary_rays = 0;
+  uint64_t shadow_rays = 0;
+};
+
+class Renderer {
+ public:
+  Renderer(const Scene& scene, const Tracer& tracer, std::unique_ptr<Technique> technique);
+  Technique& technique() { return *technique_; }
+  // Renders the next frame from `camera`; the returned frame stays valid until the next call.
+  const Frame& render(const Camera& camera, const FrameSettings& settings);
+  uint32_t frame_index() const { return frame_index_; }
+
+ private:
+  const Scene& scene_;
+  const Tracer& tracer_;
+  std::unique_ptr<Technique> technique_;
+  Frame frame_;
+  uint32_t frame_index_ = 0;
+};
+
+// Renders `spp` jittered frames of the scene's own camera and returns their linear average.
+Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
+                   int spp = 1);
+
+}  // namespace bounce

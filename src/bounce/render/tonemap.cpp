@@ -1,0 +1,22 @@
+#include "bounce/render/tonemap.h"
+
+#include <cmath>
+
+#include "bounce/core/color.h"
+#include "bounce/core/parallel.h"
+
+namespace bounce {
+
+void tonemap_srgb8(const Image& linear, float exposure_ev, std::vector<uint8_t>& out) {
+  const float scale = std::exp2(exposure_ev);
+  out.resize(linear.pixel_count() * 3);
+  parallel_for(
+      linear.pixel_count(),
+      [&](size_t i) {
+        const vec3 c = linear.pixels()[i];
+        for (int k = 0; k < 3; ++k) out[3 * i + k] = srgb8_from_linear(c[k], scale);
+      },
+      4096);
+}
+
+}  // namespace bounce

@@ -1,0 +1,72 @@
+#include "bounce/scene/light.h"
+
+#include <cmath>
+
+namespace bounce {
+
+Light Light::point(vec3 position, vec3 intensity) {
+  Light l;
+  l.type = LightType::kPoint;
+  l.position = position;
+  l.intensity = intensity;
+  return l;
+}
+
+Light Light::spot(vec3 position, vec3 direction, vec3 intensity, float inner_deg, float outer_deg) {
+  Light l;
+  l.type = LightType::kSpot;
+  l.position = position;
+  l.direction = glm::normalize(direction);
+  l.intensity = intensity;
+  l.cos_inner = std::cos(glm::radians(inner_deg));
+  l.cos_outer = std::cos(glm::radians(outer_deg));
+  return l;
+}
+
+Light Light::directional(vec3 direction, vec3 irradiance) {
+  Light l;
+  l.type = LightType::kDirectional;
+  l.direction = glm::normalize(direction);
+  l.irradiance = irradiance;
+  return l;
+}
+
+Light Light::sphere(vec3 centre, float radius, vec3 radiance) {
+  Light l;
+  l.type = LightType::kSphere;
+  l.position = centre;
+  l.radius = radius;
+  l.radiance = radiance;
+  return l;
+}
+
+vec3 Light::power(float scene_radius) const {
+  switch (type) {
+    case LightType::kPoint:
+      return intensity * (4.0f * kPi);
+    case LightType::kSpot:
+      // The smoothstep in cos(theta) integrates to half the width of its band.
+      return intensity * (kTwoPi * (1.0f - 0.5f * (cos_inner + cos_outer)));
+    case LightType::kDirectional:
+      return irradiance * (kPi * scene_radius * scene_radius);
+    case LightType::kSphere:
+      return radiance * (kPi * 4.0f * kPi * radius * radius);
+  }
+  return vec3(0.0f);
+}
+
+const char* Light::type_name() const {
+  switch (type) {
+    case LightType::kPoint:
+      return "point";
+    case LightType::kSpot:
+      return "spot";
+    case LightType::kDirectional:
+      return "directional";
+    case LightType::kSphere:
+      return "sphere";
+  }
+  return "?";
+}
+
+}  // namespace bounce

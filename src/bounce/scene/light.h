@@ -1,0 +1,45 @@
+// Light sources. Emissive triangles are lights too: Scene derives them from materials.
+#pragma once
+
+#include <string>
+
+#include "bounce/core/math.h"
+
+namespace bounce {
+
+enum class LightType { kPoint, kSpot, kDirectional, kSphere };
+
+struct Light {
+  LightType type = LightType::kPoint;
+  std::string name;
+  vec3 position{0.0f};       // point, spot, sphere (centre)
+  vec3 direction{0, -1, 0};  // spot: the axis it shines along; directional: travel direction
+  vec3 intensity{0.0f};      // point, spot: radiant intensity, W/sr
+  vec3 irradiance{0.0f};     // directional: irradiance on a surface facing it, W/m^2
+  vec3 radiance{0.0f};       // sphere: emitted radiance of its surface, W/(sr m^2)
+  float radius = 0.0f;       // sphere
+  float cos_inner = 1.0f;    // spot: full intensity inside this cone
+  float cos_outer = 0.0f;    // spot: no light outside this cone (smoothstep between)
+
+  static Light point(vec3 position, vec3 intensity);
+  static Light spot(vec3 position, vec3 direction, vec3 intensity, float inner_deg,
+                    float outer_deg);
+  static Light directional(vec3 direction, vec3 irradiance);
+  static Light sphere(vec3 centre, float radius, vec3 radiance);
+
+  // Radiant power in W per channel. A directional light's power depends on the area it lights:
+  // scene_radius is the radius of a disk that covers the scene.
+  vec3 power(float scene_radius) const;
+  const char* type_name() const;
+};
+
+// The spot's angular falloff: 1 inside the inner cone, 0 outside the outer, smooth between.
+inline float spot_falloff(const Light& l, vec3 dir_from_light) {
+  const float c = glm::dot(dir_from_light, l.direction);
+  if (c >= l.cos_inner) return 1.0f;
+  if (c <= l.cos_outer) return 0.0f;
+  const float t = (c - l.cos_outer) / (l.cos_inner - l.cos_outer);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+}  // namespace bounce

@@ -1,0 +1,221 @@
+#include "bounce/scene/scene.h"
+
+#include <cmath>
+
+#include "bounce/core/error.h"
+
+namespace bounce {
+
+namespace {
+
+void check_finite(const Scene& s, vec3 v, const std::string& what) {
+  if (!is_finite(v)) fail("{}: {} is not finite ({}, {}, {})", s.source, what, v.x, v.y, v.z);
+}
+
+void validate_mesh(const Scene& s, const Mesh& m) {
+  const std::string where = "mesh '" + m.name + "'";
+  const size_t nv = m.positions.size();
+  if (!m.normals.empty() && m.normals.size() != nv)
+    fail("{}: {} has {} normals for {} vertices", s.source, where, m.normals.size(), nv);
+  if (!m.uvs.empty() && m.uvs.size() != nv)
+    fail("{}: {} has {} texture coordinates for {} vertices", s.source, where, m.uvs.size(), nv);
+  if (m.materials.size() != m.triangles.size())
+    fail("{}: {} has {} material ids for {} triangles", s.source, where, m.materials.size(),
+         m.triangles.size());
+  for (size_t i = 0; i < nv; ++i) {
+    if (!is_finite(m.positions[i]))
+      fail("{}: {} vertex {} has a non-finite position", s.source, where, i);
+    if (!m.normals.empty() && !is_finite(m.normals[i]))
+      fail("{}: {} vertex {} has a non-finite normal", s.source, where, i);
+    if (!m.uvs.empty() && !(std::isfinite(m.uvs[i].x) && std::isfinite(m.uvs[i].y)))
+      fail("{}: {} vertex {} has a non-finite texture coordinate", s.source, where, i);
+  }
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const uvec3 tri = m.triangles[t];
+    if (tri.x >= nv || tri.y >= nv || tri.z >= nv)
+      fail("{}: {} triangle {} has vertex index out of range ({}, {}, {}; {} vertices)", s.source,
+           where, t, tri.x, tri.y, tri.z, nv);
+    if (m.materials[t] >= s.materials.size())
+      fail("{}: {} triangle {} uses material {} of {}", s.source, where, t, m.materials[t],
+           s.materials.size());
+  }
+}
+
+void validate_material(const Scene& s, const Material& m) {
+  const std::string where = "material '" + m.name + "'";
+  check_finite(s, m.albedo, where + " albedo");
+  check_finite(s, m.f0, where + " F0");
+  check_finite(s, m.emission, where + " emission");
+  if (!(m.roughness >= 0.0f && m.roughness <= 1.0f))
+    fail("{}: {} roughness {} is outside [0, 1]", s.source, where, m.roughness);
+  if (glm::any(glm::lessThan(m.emission, vec3(0.0f))))
+    fail("{}: {} has negative emission", s.source, where);
+  if (m.albedo_texture >= int(s.textures.size()))
+    fail("{}: {} uses texture {} of {}", s.source, where, m.albedo_texture, s.textures.size());
+}
+
+void validate_light(const Scene& s, const Light& l, size_t index) {
+  const std::string where = fmt::format("light {} ('{}', {})", index, l.name, l.type_name());
+  check_finite(s, l.position, where + " position");
+  check_finite(s, l.intensity, where + " intensity");
+  check_finite(s, l.irradiance, where + " irradiance");
+  check_finite(s, l.radiance, where + " radiance");
+  if (l.type == LightType::kSpot || l.type == LightType::kDirectional) {
+    if (!is_finite(l.direction) || glm::length(l.direction) < 1e-6f)
+      fail("{}: {} has no valid direction", s.source, where);
+  }
+  if (l.type == LightType::kSphere && !(l.radius > 0.0f && std::isfinite(l.radius)))
+    fail("{}: {} needs a positive radius (got {})", s.source, where, l.radius);
+  if (l.type == LightType::kSpot && !(l.cos_outer < l.cos_inner))
+    fail("{}: {} needs an outer cone wider than its inner cone", s.source, where);
+}
+
+// Frames the scene's bounds from the -z side, like the Cornell box camera.
+Camera frame_bounds(const Bounds& b) {
+  Camera c;
+  c.vfov_deg = 40.0f;
+  const vec3 centre = b.centre();
+  const float radius = 0.5f * glm::max(b.diagonal(), 1e-3f);
+  const float distance = radius / std::tan(glm::radians(c.vfov_deg) * 0.5f);
+  c.look_at = centre;
+  c.position = centre - vec3(0.0f, 0.0f, distance);
+  return c;
+}
+
+}  // namespace
+
+void Scene::finalize() {
+  if (source.empty()) source = "<scene>";
+  for (const auto& m : materials) validate_material(*this, m);
+  for (const auto& m : meshes) validate_mesh(*this, m);
+  for (size_t i = 0; i < lights.size(); ++i) validate_light(*this, lights[i], i);
+  for (const auto& t : textures)
+    if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * t.height)
+      fail("{}: texture '{}' has inconsistent size", source, t.name);
+  if (triangle_count() == 0 && lights.empty()) fail("{}: the scene has no triangles", source);
+
+  for (auto& l : lights) l.direction = glm::normalize(l.direction);
+
+  bounds = Bounds{};
+  triangle_offsets.clear();
+  uint32_t offset = 0;
+  for (const auto& m : meshes) {
+    triangle_offsets.push_back(offset);
+    offset += uint32_t(m.triangle_count());
+    for (const auto& p : m.positions) bounds.extend(p);
+  }
+  for (const auto& l : lights)
+    if (l.type != LightType::kDirectional) bounds.extend(l.position);
+
+  // Group emissive triangles by (mesh, material) into area lights weighted by area.
+  area_lights.clear();
+  for (uint32_t mi = 0; mi < meshes.size(); ++mi) {
+    const Mesh& m = meshes[mi];
+    std::vector<int> light_of_material(materials.size(), -1);
+    for (uint32_t t = 0; t < m.triangle_count(); ++t) {
+      const Material& mat = materials[m.materials[t]];
+      if (!mat.is_emissive()) continue;
+      const float area = 0.5f * glm::length(m.face_normal_area2(t));
+      if (!(area > 0.0f)) continue;  // degenerate triangles emit nothing
+      int& li = light_of_material[m.materials[t]];
+      if (li < 0) {
+        li = int(area_lights.size());
+        area_lights.push_back({m.name + "/" + mat.name, mat.emission, {}, {}, 0.0f});
+      }
+      AreaLight& al = area_lights[li];
+      al.triangles.push_back({mi, t});
+      al.area += area;
+      al.cdf.push_back(al.area);
+    }
+  }
+  for (auto& al : area_lights) {
+    for (auto& c : al.cdf) c /= al.area;
+    al.cdf.back() = 1.0f;
+  }
+
+  if (!has_camera) {
+    camera = frame_bounds(bounds);
+    has_camera = true;
+  }
+  check_finite(*this, camera.position, "camera position");
+  check_finite(*this, camera.look_at, "camera target");
+  if (glm::length(camera.look_at - camera.position) < 1e-9f)
+    fail("{}: the camera looks at its own position", source);
+  if (!(camera.vfov_deg > 0.0f && camera.vfov_deg < 180.0f))
+    fail("{}: camera field of view {} is outside (0, 180) degrees", source, camera.vfov_deg);
+}
+
+void Scene::append(Scene&& other, const mat4& m) {
+  const uint32_t material_base = uint32_t(materials.size());
+  const int texture_base = int(textures.size());
+  for (auto& t : other.textures) textures.push_back(std::move(t));
+  for (auto& mat : other.materials) {
+    if (mat.albedo_texture >= 0) mat.albedo_texture += texture_base;
+    materials.push_back(std::move(mat));
+  }
+  for (auto& mesh : other.meshes) {
+    for (auto& id : mesh.materials) id += material_base;
+    mesh.transform(m);
+    meshes.push_back(std::move(mesh));
+  }
+  const mat3 linear(m);
+  for (auto& l : other.lights) {
+    l.position = vec3(m * vec4(l.position, 1.0f));
+    l.direction = linear * l.direction;
+    lights.push_back(std::move(l));
+  }
+}
+
+size_t Scene::triangle_count() const {
+  size_t n = 0;
+  for (const auto& m : meshes) n += m.triangle_count();
+  return n;
+}
+
+vec3 Scene::albedo(const Material& material, vec2 uv) const {
+  if (material.albedo_texture < 0) return material.albedo;
+  return material.albedo * textures[material.albedo_texture].sample(uv);
+}
+
+void Mesh::transform(const mat4& m) {
+  if (m == mat4(1.0f)) return;
+  for (auto& p : positions) p = vec3(m * vec4(p, 1.0f));
+  const mat3 normal_matrix = glm::transpose(glm::inverse(mat3(m)));
+  for (auto& n : normals) n = glm::normalize(normal_matrix * n);
+  // A mirroring transform flips the winding's sense; swap two vertices to keep front faces.
+  if (glm::determinant(mat3(m)) < 0.0f)
+    for (auto& t : triangles) std::swap(t.y, t.z);
+}
+
+vec3 Texture::sample(vec2 uv) const {
+  const float x = (uv.x - std::floor(uv.x)) * width - 0.5f;
+  const float y = (uv.y - std::floor(uv.y)) * height - 0.5f;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float fx = x - x0, fy = y - y0;
+  auto texel = [&](int tx, int ty) {
+    tx = ((tx % width) + width) % width;
+    ty = ((ty % height) + height) % height;
+    return texels[size_t(ty) * width + tx];
+  };
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+CameraRays CameraRays::from(const Camera& camera, int width, int height) {
+  CameraRays r;
+  r.origin = camera.position;
+  r.forward = glm::normalize(camera.look_at - camera.position);
+  vec3 right = glm::cross(r.forward, camera.up);
+  if (glm::length(right) < 1e-6f) right = glm::cross(r.forward, vec3(1.0f, 0.0f, 0.0f));
+  right = glm::normalize(right);
+  const vec3 up = glm::cross(right, r.forward);
+  const float half_h = std::tan(glm::radians(camera.vfov_deg) * 0.5f);
+  const float half_w = half_h * float(width) / float(height);
+  r.right = right * half_w;
+  r.up = up * half_h;
+  r.width = float(width);
+  r.height = float(height);
+  return r;
+}
+
+}  // namespace bounce

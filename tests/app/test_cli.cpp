@@ -1,0 +1,108 @@
+// The command-line program end to end: help, bad arguments, missing files, and real output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "bounce/core/image_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(BOUNCE_APP_PATH) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path scratch_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("bounce-cli-" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(Cli, EveryCommandHasHelp) {
+  for (const char* command : {"", "render", "info", "bench"}) {
+    const Result r = run(std::string(command) + " --help");
+    EXPECT_EQ(r.status, 0) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << command;
+  }
+}
+
+TEST(Cli, BadArgumentsAreRejectedWithAMessage) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"", "subcommand"},
+      {"frobnicate", "subcommand"},
+      {"render --width -5", "width"},
+      {"render --width abc", "width"},
+      {"render --light-samples 0", "light-samples"},
+      {"render --technique nonsense -W 8 -H 8", "unknown technique 'nonsense'"},
+      {"render --param nope=1 -W 8 -H 8", "unknown parameter 'nope'"},
+      {"render --out out.bmp -W 8 -H 8", "out.bmp"},
+      {"render cubes:abc", "cubes:abc"},
+      {"info", "scene"},
+      {"bench cornell --frames 0", "frames"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const Result r = run(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.status, -1) << args << " crashed";
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
+TEST(Cli, MissingSceneFileIsNamed) {
+  const Result r = run("render /nonexistent/dir/scene.obj -W 8 -H 8");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/dir/scene.obj"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RenderWritesPngAndExrAndPrintsStageTimes) {
+  const fs::path dir = scratch_dir("render");
+  const fs::path png = dir / "cornell.png", exr = dir / "cornell.exr";
+  Result r = run("render -W 32 -H 24 --spp 2 --light-samples 2 --out " + png.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* stage : {"gbuffer", "direct", "composite", "tonemap", "total"})
+    EXPECT_NE(r.output.find(stage), std::string::npos) << stage << "\n" << r.output;
+  r = run("render cornell -W 32 -H 24 --light-samples 2 --out " + exr.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const bounce::Image a = bounce::load_image(png.string());
+  const bounce::Image b = bounce::load_image(exr.string());
+  EXPECT_EQ(a.width(), 32);
+  EXPECT_EQ(a.height(), 24);
+  EXPECT_EQ(b.width(), 32);
+  EXPECT_GT(bounce::mean(b).x, 0.0f);
+  // Only the two images: no temporary files left beside them.
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 2);
+}
+
+TEST(Cli, InfoAndBenchReportTheScene) {
+  Result r = run("info cornell");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("triangles   32"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("MiB"), std::string::npos) << r.output;
+  r = run("bench cornell -W 16 -H 16 --frames 3 --warmup 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("stddev"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("primary rays/s"), std::string::npos) << r.output;
+}
+
+}  // namespace
