@@ -55,7 +55,9 @@ TEST(Brdf, GgxAlbedoStaysWithinUnitInterval) {
       EXPECT_GE(a, 0.0f) << roughness << " " << cos_o;
       EXPECT_LE(a, 1.0f) << roughness << " " << cos_o;
       // Smooth, white-F0 surfaces seen head-on reflect nearly all light.
-      if (roughness <= 0.2f && cos_o >= 0.7f) EXPECT_GT(a, 0.85f) << roughness;
+      if (roughness <= 0.2f && cos_o >= 0.7f) {
+        EXPECT_GT(a, 0.85f) << roughness;
+      }
     }
 }
 

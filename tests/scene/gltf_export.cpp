@@ -76,11 +76,12 @@ tg::Material export_material(const Material& m) {
 // A node matrix whose local -Z points along `forward` and whose +Y is `up` made orthogonal.
 std::vector<double> oriented_matrix(vec3 position, vec3 forward, vec3 up) {
   const vec3 z = -glm::normalize(forward);
-  if (glm::length(glm::cross(up, z)) < 1e-6f) up = std::abs(z.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0);
+  if (glm::length(glm::cross(up, z)) < 1e-6f)
+    up = std::abs(z.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0);
   const vec3 x = glm::normalize(glm::cross(up, z));
   const vec3 y = glm::cross(z, x);
-  return {x.x, x.y, x.z, 0, y.x, y.y, y.z, 0, z.x, z.y, z.z, 0, position.x, position.y, position.z,
-          1};
+  return {x.x, x.y, x.z, 0, y.x,        y.y,        y.z,        0,
+          z.x, z.y, z.z, 0, position.x, position.y, position.z, 1};
 }
 
 void export_mesh(tg::Model& model, const Mesh& mesh) {
@@ -136,7 +137,9 @@ void export_light(tg::Model& model, const Light& l) {
   out.name = l.name;
   vec3 value = l.intensity;
   switch (l.type) {
-    case LightType::kPoint: out.type = "point"; break;
+    case LightType::kPoint:
+      out.type = "point";
+      break;
     case LightType::kSphere:
       out.type = "point";
       value = l.radiance * (kPi * l.radius * l.radius);

@@ -123,8 +123,8 @@ TEST(BuiltinScenes, CubesFitInsideTheRoomAndFaceOut) {
       EXPECT_LT(centre.y + 0.5f * glm::length(cubes->positions[8 * c] - centre), 5.99f);
       for (uint32_t t = 12 * c; t < 12 * c + 12; ++t) {
         const uvec3 tri = cubes->triangles[t];
-        const vec3 mid = (cubes->positions[tri.x] + cubes->positions[tri.y] +
-                          cubes->positions[tri.z]) / 3.0f;
+        const vec3 mid =
+            (cubes->positions[tri.x] + cubes->positions[tri.y] + cubes->positions[tri.z]) / 3.0f;
         EXPECT_GT(glm::dot(cubes->face_normal_area2(t), mid - centre), 0.0f);
       }
     }
@@ -186,8 +186,9 @@ TEST(LoadScene, BuiltinSpecs) {
 }
 
 TEST(LoadScene, RejectsMalformedCubeSpecs) {
-  for (const char* spec : {"cubes", "cubes:", "cubes:-3", "cubes:abc", "cubes:0", "cubes:3x",
-                           "cubes: 3", "cubes:3:", "cubes:3:-1", "cubes:3:x", "cubes:99999999999"}) {
+  for (const char* spec :
+       {"cubes", "cubes:", "cubes:-3", "cubes:abc", "cubes:0", "cubes:3x", "cubes: 3",
+        "cubes:3:", "cubes:3:-1", "cubes:3:x", "cubes:99999999999"}) {
     const std::string message = error_of([&] { load_scene(spec); });
     EXPECT_TRUE(scene_test::contains(message, "cubes")) << spec << ": " << message;
   }

@@ -275,15 +275,15 @@ TEST(LoadGltf, NonIndexedPrimitivesSmallIndicesAndNormalizedUvs) {
   TempDir dir;
   tg::Model m = triangle_model();
   tg::Primitive& p = m.meshes[0].primitives[0];
-  p.attributes["TEXCOORD_0"] = add_data(m, std::vector<uint16_t>{0, 65535, 65535, 0, 0, 0},
-                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2,
-                                        3);
+  p.attributes["TEXCOORD_0"] =
+      add_data(m, std::vector<uint16_t>{0, 65535, 65535, 0, 0, 0},
+               TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, 3);
   m.accessors.back().normalized = true;
   p.attributes["NORMAL"] = add_data(m, std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1},
                                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3);
   tg::Primitive bytes = p;  // the same triangle reversed, with u8 indices
-  bytes.indices = add_data(m, std::vector<uint8_t>{2, 1, 0, 0}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                           TINYGLTF_TYPE_SCALAR, 3);
+  bytes.indices = add_data(m, std::vector<uint8_t>{2, 1, 0, 0},
+                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_SCALAR, 3);
   tg::Primitive plain = p;  // no indices at all
   plain.indices = -1;
   m.meshes[0].primitives = {p, bytes, plain};
@@ -398,7 +398,8 @@ TEST(LoadGltf, TruncatedGlbIsAnError) {
   TempDir dir;
   const std::string full = scene_test::read_bytes(write(triangle_model(), dir, "full.glb"));
   ASSERT_GT(full.size(), 40u);
-  for (size_t cut : {size_t(0), size_t(3), size_t(12), size_t(20), full.size() / 2, full.size() - 1}) {
+  for (size_t cut :
+       {size_t(0), size_t(3), size_t(12), size_t(20), full.size() / 2, full.size() - 1}) {
     const std::string path = dir.write("cut.glb", full.substr(0, cut));
     const std::string message = error_of([&] { load_scene(path); });
     EXPECT_TRUE(contains(message, path)) << cut << ": " << message;

@@ -131,9 +131,10 @@ TEST(LoadObj, FileWithMtlAndTexture) {
   image.at(1, 0) = vec3(0.0f, 0.0f, 1.0f);
   save_image(dir.file("tex/albedo.png"), image);
   dir.write("box.mtl", "newmtl t\nKd 1 1 1\nmap_Kd tex/albedo.png\n");
-  const std::string path = dir.write(
-      "box.obj", "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
-                 "usemtl t\nf 1/1 2/2 3/3\n");
+  const std::string path =
+      dir.write("box.obj",
+                "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                "usemtl t\nf 1/1 2/2 3/3\n");
   const Scene scene = load_scene(path);
   EXPECT_EQ(scene.source, path);
   ASSERT_EQ(scene.textures.size(), 1u);
@@ -178,9 +179,9 @@ TEST(LoadObj, FaceIndexOutOfRangeNamesFileAndLine) {
   const std::string message = error_of([&] { load_obj(path); });
   EXPECT_TRUE(contains(message, path + ":4")) << message;
   EXPECT_TRUE(contains(message, "vertex index 9")) << message;
-  EXPECT_TRUE(contains(error_of([] { load_obj_text("v 0 0 0\nf 1 1 1\nvn 0 0 1\nf 1//2 1//1 1//1\n",
-                                                    "", "n"); }),
-                       "n:4: normal index 2"));
+  EXPECT_TRUE(contains(
+      error_of([] { load_obj_text("v 0 0 0\nf 1 1 1\nvn 0 0 1\nf 1//2 1//1 1//1\n", "", "n"); }),
+      "n:4: normal index 2"));
   EXPECT_TRUE(contains(error_of([] { load_obj_text("v 0 0 0\nf 1/3 1/1 1/1\n", "", "t"); }),
                        "t:2: texture coordinate index 3"));
   EXPECT_TRUE(contains(error_of([] { load_obj_text("v 0 0 0\nf -2 1 1\n", "", "r"); }), "r:2"));
@@ -217,8 +218,9 @@ TEST(LoadObj, RejectsMalformedMtl) {
                        "'Kd' needs 3 numbers, found 1"));
   EXPECT_TRUE(contains(error_of([&] { load_obj_text(obj, "newmtl a\nKe 1 nan 1\n", "m"); }),
                        "'nan' is not a finite number"));
-  EXPECT_TRUE(contains(error_of([&] { load_obj_text(obj, "newmtl a\nKe -1 0 0\n", "m").finalize(); }),
-                       "negative emission"));
+  EXPECT_TRUE(
+      contains(error_of([&] { load_obj_text(obj, "newmtl a\nKe -1 0 0\n", "m").finalize(); }),
+               "negative emission"));
 }
 
 TEST(LoadObj, TruncatedFilesFailCleanlyOrLoadLess) {
@@ -245,8 +247,8 @@ TEST(LoadObj, TruncatedFilesFailCleanlyOrLoadLess) {
       error_of([&] { load_obj_text(full.substr(0, at + 13), builtin_data::kCornellMtl, "cut"); });
   EXPECT_TRUE(contains(message, "'v' needs 3 to 7 numbers")) << message;
   // A file whose vertex list was cut short while a later face still refers to it.
-  const std::string message2 = error_of(
-      [] { load_obj_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n", "", "short"); });
+  const std::string message2 =
+      error_of([] { load_obj_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n", "", "short"); });
   EXPECT_TRUE(contains(message2, "short:5: vertex index 4 is out of range")) << message2;
 }
 
@@ -256,7 +258,8 @@ TEST(LoadObj, MissingFileIsAnError) {
 }
 
 TEST(LoadObj, CrlfLineEndingsAndComments) {
-  const Scene scene = load_obj_text("# c\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nf 1 2 3\r\n", "", "crlf");
+  const Scene scene =
+      load_obj_text("# c\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nf 1 2 3\r\n", "", "crlf");
   EXPECT_EQ(scene.triangle_count(), 1u);
 }
 

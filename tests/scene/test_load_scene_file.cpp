@@ -15,8 +15,7 @@ using scene_test::expect_near;
 using scene_test::find_mesh;
 using scene_test::TempDir;
 
-constexpr const char* kQuadObj =
-    "o quad\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n";
+constexpr const char* kQuadObj = "o quad\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n";
 
 TEST(LoadSceneFile, ModelsLightsAndCamera) {
   TempDir dir;
@@ -73,8 +72,8 @@ TEST(LoadSceneFile, ModelsLightsAndCamera) {
 
 TEST(LoadSceneFile, CameraComesFromTheFirstModelThatHasOne) {
   TempDir dir;
-  const std::string path = dir.write(
-      "c.json", R"({"models": [{"builtin": "cornell", "translate": [1, 0, 0]}]})");
+  const std::string path =
+      dir.write("c.json", R"({"models": [{"builtin": "cornell", "translate": [1, 0, 0]}]})");
   const Scene scene = load_scene(path);
   expect_near(scene.camera.position, vec3(1.278f, 0.273f, -0.8f), 1e-6f);
   EXPECT_FLOAT_EQ(scene.camera.vfov_deg, 39.3077f);
@@ -155,7 +154,8 @@ TEST(LoadSceneFile, WrongTypesLengthsAndMissingFields) {
 
 TEST(LoadSceneFile, BadJsonGivesLineAndColumn) {
   TempDir dir;
-  const std::string path = dir.write("bad.bounce.json", "{\n  \"models\": [\n    {\"builtin\": }\n");
+  const std::string path =
+      dir.write("bad.bounce.json", "{\n  \"models\": [\n    {\"builtin\": }\n");
   const std::string message = error_of([&] { load_scene(path); });
   EXPECT_TRUE(contains(message, path + ": invalid JSON")) << message;
   EXPECT_TRUE(contains(message, "line 3")) << message;
@@ -181,15 +181,16 @@ TEST(LoadSceneFile, ErrorsInsideAModelNameBothFiles) {
 
 TEST(LoadSceneFile, SceneFilesCannotNest) {
   TempDir dir;
-  const std::string path = dir.write("self.bounce.json", R"({"models": [{"file": "self.bounce.json"}]})");
+  const std::string path =
+      dir.write("self.bounce.json", R"({"models": [{"file": "self.bounce.json"}]})");
   const std::string message = error_of([&] { load_scene(path); });
   EXPECT_TRUE(contains(message, "cannot be used as a model")) << message;
 }
 
 TEST(LoadSceneFile, LightsOnlySceneHasNoTrianglesButLoads) {
   TempDir dir;
-  const std::string path = dir.write(
-      "l.json", R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1}],
+  const std::string path =
+      dir.write("l.json", R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1}],
                    "camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]}})");
   const Scene scene = load_scene(path);
   EXPECT_EQ(scene.triangle_count(), 0u);

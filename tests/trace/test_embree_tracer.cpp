@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "bounce/core/error.h"
 #include "bounce/core/rng.h"
 #include "bounce/core/sampling.h"
 #include "bounce/trace/tracer.h"
@@ -35,7 +36,7 @@ Scene random_triangles(int meshes, int per_mesh, uint32_t seed) {
   Pcg32 rng(seed);
   for (int m = 0; m < meshes; ++m) {
     Mesh mesh;
-    mesh.name = "m" + std::to_string(m);
+    mesh.name = fmt::format("mesh{}", m);
     for (int t = 0; t < per_mesh; ++t) {
       const vec3 c = 4.0f * vec3(rng.next_float(), rng.next_float(), rng.next_float()) - 2.0f;
       for (int k = 0; k < 3; ++k)

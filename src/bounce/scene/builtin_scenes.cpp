@@ -29,7 +29,7 @@ Material emitter(const char* name, vec3 radiance) {
 // Appends a quad as triangles (0,1,2), (0,2,3); it faces where cross(p1 - p0, p2 - p0) points.
 void add_quad(Mesh& mesh, vec3 p0, vec3 p1, vec3 p2, vec3 p3, uint32_t material) {
   const uint32_t base = uint32_t(mesh.positions.size());
-  mesh.positions.insert(mesh.positions.end(), {p0, p1, p2, p3});
+  for (const vec3& p : {p0, p1, p2, p3}) mesh.positions.push_back(p);
   mesh.triangles.push_back({base, base + 1, base + 2});
   mesh.triangles.push_back({base, base + 2, base + 3});
   mesh.materials.insert(mesh.materials.end(), 2, material);
@@ -103,21 +103,20 @@ Scene make_cornell() {
 // triangles, "room"), a 1.5 x 1.5 m emissive quad 1 cm under the ceiling facing down (2
 // triangles, "light", radiance 20 W/(sr m^2), about 141 W) and `cube_count` cubes (12 triangles
 // each, one mesh "cubes"), so 14 + 12 * cube_count triangles in all. The cubes are scattered
-// with Pcg32(seed) through the room's interior beyond the first 1.5 m in front of the camera,
-// each turned about y by a random angle and given a colour from a small palette; their edges
-// shrink as room / cbrt(count) so that the volume they fill stays about the same. They may
-// overlap (placing them is O(count)). The camera stands near the -z wall looking into the room.
+// with Pcg32(seed) through the room, clear of the walls, of the light and of the 1.5 m strip
+// along the -z wall where the camera stands; each is turned about y by a random angle and given
+// a colour from a small palette. Their edges shrink as room / cbrt(count) so that the volume
+// they fill stays about the same; they may overlap (placing them is O(count)). The camera stands
+// near the -z wall looking into the room.
 Scene make_cubes(uint32_t cube_count, uint32_t seed) {
   if (cube_count == 0) fail("cubes: the cube count must be positive");
   Scene scene;
   scene.source = fmt::format("cubes:{}:{}", cube_count, seed);
-  scene.materials = {diffuse("wall", vec3(0.75f, 0.75f, 0.72f)),
-                     emitter("light", vec3(20.0f)),
-                     diffuse("white", vec3(0.8f, 0.8f, 0.78f)),
-                     diffuse("red", vec3(0.7f, 0.15f, 0.12f)),
-                     diffuse("green", vec3(0.2f, 0.6f, 0.2f)),
-                     diffuse("blue", vec3(0.15f, 0.3f, 0.7f)),
-                     diffuse("yellow", vec3(0.75f, 0.65f, 0.2f))};
+  scene.materials = {
+      diffuse("wall", vec3(0.75f, 0.75f, 0.72f)), emitter("light", vec3(20.0f)),
+      diffuse("white", vec3(0.8f, 0.8f, 0.78f)),  diffuse("red", vec3(0.7f, 0.15f, 0.12f)),
+      diffuse("green", vec3(0.2f, 0.6f, 0.2f)),   diffuse("blue", vec3(0.15f, 0.3f, 0.7f)),
+      diffuse("yellow", vec3(0.75f, 0.65f, 0.2f))};
   constexpr uint32_t kFirstPaletteMaterial = 2, kPaletteSize = 5;
 
   Mesh room = make_mesh("room");

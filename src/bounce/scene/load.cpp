@@ -28,14 +28,14 @@ std::string lower(std::string s) {
 }
 
 bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),
-                                                suffix.data(), suffix.size()) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix.data(), suffix.size()) == 0;
 }
 
 // Parses a whole string of decimal digits (no sign, no spaces) into a uint32.
 bool parse_u32(std::string_view text, uint32_t* out) {
-  if (text.empty() || !std::all_of(text.begin(), text.end(),
-                                   [](char c) { return c >= '0' && c <= '9'; }))
+  if (text.empty() ||
+      !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
     return false;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *out);
   return ec == std::errc() && end == text.data() + text.size();
@@ -97,11 +97,14 @@ Scene make_builtin_scene(const std::string& spec) {
 
 Scene load_model_file(const std::string& path) {
   switch (file_kind(path)) {
-    case FileKind::kObj: return load_obj(path);
-    case FileKind::kGltf: return load_gltf(path);
+    case FileKind::kObj:
+      return load_obj(path);
+    case FileKind::kGltf:
+      return load_gltf(path);
     case FileKind::kSceneFile:
       fail("{}: a scene file cannot be used as a model (only .obj, .gltf and .glb)", path);
-    case FileKind::kUnknown: break;
+    case FileKind::kUnknown:
+      break;
   }
   fail("{}: unknown model file type (expected .obj, .gltf or .glb)", path);
 }
@@ -114,8 +117,7 @@ Scene load_scene(const std::string& spec) {
     return scene;
   }
   const FileKind kind = file_kind(spec);
-  if (kind == FileKind::kUnknown)
-    fail("{}: unknown scene type; {}", spec, kAcceptedForms);
+  if (kind == FileKind::kUnknown) fail("{}: unknown scene type; {}", spec, kAcceptedForms);
   check_file_exists(spec);
   Scene scene = kind == FileKind::kSceneFile ? load_scene_file(spec) : load_model_file(spec);
   scene.source = spec;

@@ -88,7 +88,8 @@ tg::Model read_model(const std::string& path) {
     error = trim(error);
     if (error.empty()) error = trim(warnings);
     // nlohmann's "[json.exception.parse_error.101] " prefix says nothing to a user.
-    if (const size_t end = error.find("] "); error.starts_with("[json.") && end != std::string::npos)
+    if (const size_t end = error.find("] ");
+        error.starts_with("[json.") && end != std::string::npos)
       error = error.substr(end + 2);
     fail("{}: cannot load glTF: {}", path, error.empty() ? "unknown error" : error);
   }
@@ -112,11 +113,11 @@ struct Context {
   const std::string& path;
   const tg::Model& model;
   Scene& scene;
-  std::vector<int> material_of;    // glTF material -> scene material (-1: not yet converted)
-  int default_material = -1;       // for primitives without a material
-  std::map<int, int> texture_of;   // glTF image -> scene texture (-1: unusable)
-  std::set<std::string> ignored;   // unsupported features met, reported once
-  std::set<int> skipped_modes;     // primitive modes other than triangles, reported once
+  std::vector<int> material_of;   // glTF material -> scene material (-1: not yet converted)
+  int default_material = -1;      // for primitives without a material
+  std::map<int, int> texture_of;  // glTF image -> scene texture (-1: unusable)
+  std::set<std::string> ignored;  // unsupported features met, reported once
+  std::set<int> skipped_modes;    // primitive modes other than triangles, reported once
   bool camera_found = false;
 };
 
@@ -154,11 +155,16 @@ struct AccessorData {
 
 const char* type_name(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    default: return "matrix or unknown";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    default:
+      return "matrix or unknown";
   }
 }
 
@@ -195,9 +201,10 @@ AccessorData accessor_data(const Context& ctx, int index, const std::string& wha
   const bool fits = a.byteOffset <= view.size && element <= view.size - a.byteOffset &&
                     a.count - 1 <= (view.size - a.byteOffset - element) / stride;
   if (!fits)
-    fail("{}: {}: {} elements of {} bytes (stride {}) from byte offset {} run past the end of "
-         "bufferView {} ({} bytes)",
-         ctx.path, where, a.count, element, stride, a.byteOffset, a.bufferView, view.size);
+    fail(
+        "{}: {}: {} elements of {} bytes (stride {}) from byte offset {} run past the end of "
+        "bufferView {} ({} bytes)",
+        ctx.path, where, a.count, element, stride, a.byteOffset, a.bufferView, view.size);
   out.data = view.data + a.byteOffset;
   return out;
 }
@@ -233,8 +240,9 @@ std::vector<vec2> read_uv(const Context& ctx, int index, const std::string& what
   const AccessorData a = accessor_data(ctx, index, what);
   expect_type(ctx, index, a, 2, "VEC2", what);
   const int t = a.component_type;
-  if (t != TINYGLTF_COMPONENT_TYPE_FLOAT && !(a.normalized && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                            t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)))
+  if (t != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+      !(a.normalized && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)))
     fail("{}: {}: texture coordinates must be float or normalized unsigned byte/short", ctx.path,
          what);
   std::vector<vec2> out(a.count);
@@ -258,9 +266,15 @@ std::vector<uint32_t> read_indices(const Context& ctx, int index, const std::str
   for (size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = a.data + i * a.stride;
     switch (a.component_type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[i] = read_at<uint16_t>(p); break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[i] = read_at<uint32_t>(p); break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        out[i] = p[0];
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        out[i] = read_at<uint16_t>(p);
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        out[i] = read_at<uint32_t>(p);
+        break;
       default:
         fail("{}: {}: indices must be unsigned byte, short or int (type {})", ctx.path, what,
              a.component_type);
@@ -279,7 +293,8 @@ bool texture_from_image(const tg::Image& image, Texture* out) {
     return false;
   const size_t pixels = size_t(image.width) * size_t(image.height);
   const size_t bytes_per_pixel = size_t(image.component) * size_t(image.bits / 8);
-  if (image.image.size() / bytes_per_pixel < pixels || image.image.size() != pixels * bytes_per_pixel)
+  if (image.image.size() / bytes_per_pixel < pixels ||
+      image.image.size() != pixels * bytes_per_pixel)
     return false;
   std::array<float, 256> lut;
   for (int i = 0; i < 256; ++i) lut[size_t(i)] = srgb_decode(float(i) / 255.0f);
@@ -326,9 +341,10 @@ int texture_for_image(Context& ctx, int index, const std::string& material) {
     result = int(ctx.scene.textures.size());
     ctx.scene.textures.push_back(std::move(texture));
   } else {
-    warn(fmt::format("{}: material '{}': image '{}' is missing or cannot be decoded; using the "
-                     "base colour factor alone",
-                     ctx.path, material, label));
+    warn(
+        fmt::format("{}: material '{}': image '{}' is missing or cannot be decoded; using the "
+                    "base colour factor alone",
+                    ctx.path, material, label));
   }
   ctx.texture_of[index] = result;
   return result;
@@ -378,20 +394,22 @@ Material convert_material(Context& ctx, int index) {
   float specular = 1.0f;
   vec3 specular_colour(1.0f);
   if (const tg::Value* ext = extension(m.extensions, "KHR_materials_specular")) {
-    specular = finite_number(ctx, number_or(*ext, "specularFactor", 1.0), where + " specularFactor");
+    specular =
+        finite_number(ctx, number_or(*ext, "specularFactor", 1.0), where + " specularFactor");
     if (ext->Has("specularColorFactor")) {
       const tg::Value& c = ext->Get("specularColorFactor");
       if (!c.IsArray() || c.ArrayLen() != 3)
         fail("{}: {} specularColorFactor needs 3 numbers", ctx.path, where);
       for (int i = 0; i < 3; ++i)
-        specular_colour[i] = finite_number(ctx, c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble()
-                                                                    : NAN,
-                                           where + " specularColorFactor");
+        specular_colour[i] =
+            finite_number(ctx, c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : NAN,
+                          where + " specularColorFactor");
     }
     if (ext->Has("specularTexture") || ext->Has("specularColorTexture"))
       ctx.ignored.insert("specular textures");
   }
-  const vec3 dielectric_f0 = glm::min(0.04f * specular_colour, vec3(1.0f)) * glm::clamp(specular, 0.0f, 1.0f);
+  const vec3 dielectric_f0 =
+      glm::min(0.04f * specular_colour, vec3(1.0f)) * glm::clamp(specular, 0.0f, 1.0f);
   out.albedo = base * (1.0f - metallic);
   out.f0 = glm::mix(dielectric_f0, base, metallic);
 
@@ -415,7 +433,8 @@ Material convert_material(Context& ctx, int index) {
     } else {
       out.albedo_texture = texture_for_image(ctx, source, out.name);
     }
-    if (pbr.baseColorTexture.texCoord != 0) ctx.ignored.insert("texture coordinate sets other than 0");
+    if (pbr.baseColorTexture.texCoord != 0)
+      ctx.ignored.insert("texture coordinate sets other than 0");
     if (pbr.baseColorTexture.extensions.count("KHR_texture_transform"))
       ctx.ignored.insert("KHR_texture_transform");
   }
@@ -516,6 +535,7 @@ void add_primitive(Context& ctx, const tg::Primitive& p, const mat4& world, std:
                      where));
     mesh.normals.clear();
   }
+  for (vec3& n : mesh.normals) n = glm::normalize(n);  // an identity transform keeps them as read
   mesh.transform(world);
   ctx.scene.meshes.push_back(std::move(mesh));
 }
@@ -592,8 +612,8 @@ void add_light(Context& ctx, const tg::Node& node, int node_index, const mat4& w
     light = Light::point(position, value);
   } else if (l.type == "spot" || l.type == "directional") {
     if (!has_direction) {
-      warn(fmt::format("{}: {}: the node's transform has no -Z direction; light skipped",
-                       ctx.path, where));
+      warn(fmt::format("{}: {}: the node's transform has no -Z direction; light skipped", ctx.path,
+                       where));
       return;
     }
     if (l.type == "directional") {

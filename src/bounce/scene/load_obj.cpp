@@ -101,15 +101,14 @@ void check_face_vertex(std::string_view token, const std::string& name, size_t l
   const bool ok = count <= 3 && is_integer(parts[0]) &&
                   (count < 2 || (count == 3 && parts[1].empty()) || is_integer(parts[1])) &&
                   (count < 3 || is_integer(parts[2]));
-  if (!ok)
-    fail("{}:{}: '{}' is not a face vertex (v, v/t, v//n or v/t/n)", name, line, token);
+  if (!ok) fail("{}:{}: '{}' is not a face vertex (v, v/t, v//n or v/t/n)", name, line, token);
   for (size_t i = 0; i < count; ++i)
     if (is_zero(parts[i]))
       fail("{}:{}: face vertex '{}' uses index 0 (OBJ indices start at 1)", name, line, token);
 }
 
-void check_numbers(const std::vector<std::string_view>& tokens, size_t min_count,
-                   size_t max_count, const std::string& name, size_t line) {
+void check_numbers(const std::vector<std::string_view>& tokens, size_t min_count, size_t max_count,
+                   const std::string& name, size_t line) {
   const size_t count = tokens.size() - 1;
   if (count < min_count || count > max_count) {
     if (min_count == max_count)
@@ -259,7 +258,9 @@ float roughness_from_shininess(float ns) {
   return glm::clamp(std::sqrt(alpha), 0.0f, 1.0f);
 }
 
-vec3 colour(const tinyobj::real_t c[3]) { return vec3(c[0], c[1], c[2]); }
+vec3 colour(const tinyobj::real_t c[3]) {
+  return vec3(c[0], c[1], c[2]);
+}
 
 vec3 clamp_unit(vec3 c, const std::string& what, const std::string& name) {
   const vec3 clamped = glm::clamp(c, vec3(0.0f), vec3(1.0f));
@@ -366,7 +367,10 @@ Mesh build_mesh(ObjContext& ctx, const tinyobj::shape_t& shape, size_t shape_ind
   const size_t nn = attrib.normals.size() / 3;
   const size_t nt = attrib.texcoords.size() / 2;
   Mesh mesh;
-  mesh.name = shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name;
+  mesh.name = shape.name;
+  while (!mesh.name.empty() && (mesh.name.back() == ' ' || mesh.name.back() == '\t'))
+    mesh.name.pop_back();  // tinyobjloader keeps the rest of the "o" line
+  if (mesh.name.empty()) mesh.name = fmt::format("shape{}", shape_index);
 
   // Check every face against the index array and the attribute counts.
   size_t total = 0;
@@ -407,7 +411,8 @@ Mesh build_mesh(ObjContext& ctx, const tinyobj::shape_t& shape, size_t shape_ind
     const auto [it, inserted] = ids.try_emplace(key, uint32_t(mesh.positions.size()));
     if (inserted) {
       const size_t v = size_t(key.v) * 3;
-      mesh.positions.push_back({attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]});
+      mesh.positions.push_back(
+          {attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]});
       if (all_normals) {
         const size_t n = size_t(key.n) * 3;
         mesh.normals.push_back({attrib.normals[n], attrib.normals[n + 1], attrib.normals[n + 2]});
@@ -529,8 +534,7 @@ Scene load_obj_impl(const std::string& obj_text, MtlReader& mtl, bool inline_mtl
 
 Scene load_obj(const std::string& path) {
   std::string text;
-  if (!read_file(path, &text))
-    fail("{}: cannot read the file ({})", path, std::strerror(errno));
+  if (!read_file(path, &text)) fail("{}: cannot read the file ({})", path, std::strerror(errno));
   const std::string dir = fs::path(path).parent_path().string();
   MtlReader mtl(dir.empty() ? "." : dir, nullptr, path);
   return load_obj_impl(text, mtl, false, path);

@@ -55,14 +55,10 @@ class Object {
     return v.get<std::string>();
   }
   vec3 vector(const char* key) const { return to_vec3(at(key), key, false); }
-  vec3 vector_or(const char* key, vec3 fallback) const {
-    return has(key) ? vector(key) : fallback;
-  }
+  vec3 vector_or(const char* key, vec3 fallback) const { return has(key) ? vector(key) : fallback; }
   // A colour or scale: [x, y, z], or one number for all three.
   vec3 triple(const char* key) const { return to_vec3(at(key), key, true); }
-  vec3 triple_or(const char* key, vec3 fallback) const {
-    return has(key) ? triple(key) : fallback;
-  }
+  vec3 triple_or(const char* key, vec3 fallback) const { return has(key) ? triple(key) : fallback; }
 
   const std::string& where() const { return where_; }
 
@@ -109,7 +105,8 @@ json parse_json(const std::string& text, const std::string& file) {
   } catch (const json::exception& e) {
     std::string message = e.what();
     // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep "parse error at line...".
-    if (const size_t end = message.find("] "); message.starts_with("[json.") && end != std::string::npos)
+    if (const size_t end = message.find("] ");
+        message.starts_with("[json.") && end != std::string::npos)
       message = message.substr(end + 2);
     fail("{}: invalid JSON: {}", file, message);
   }
@@ -150,8 +147,7 @@ Scene load_model(const Object& o, const std::string& file, const fs::path& dir) 
   const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : dir / name;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
-    fail("{}: {}: model file '{}' not found (looked for {})", file, o.where(), name,
-         path.string());
+    fail("{}: {}: model file '{}' not found (looked for {})", file, o.where(), name, path.string());
   try {
     return load_model_file(path.string());
   } catch (const Error& e) {
@@ -194,8 +190,7 @@ Light parse_light(const json& j, const std::string& file, const std::string& whe
   if (!j.at("type").is_string()) fail("{}: {}: 'type' must be a string", file, where);
   const std::string type = j.at("type").get<std::string>();
   if (type != "point" && type != "spot" && type != "directional" && type != "sphere")
-    fail("{}: {}: unknown light type '{}' (point, spot, directional or sphere)", file, where,
-         type);
+    fail("{}: {}: unknown light type '{}' (point, spot, directional or sphere)", file, where, type);
   const Object o(j, file, where, light_keys(type));
   Light light;
   if (type == "point") {
