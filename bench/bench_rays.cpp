@@ -1,5 +1,5 @@
 // Ray throughput of the Tracer on the scenes of docs/benchmarks.md at 512x512: primary rays
-// (single and 8-wide packets) and shadow rays towards the scene's first light.
+// (one by one, and as a coherent stream) and shadow rays (a stream) towards the first light.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -74,7 +74,7 @@ void BM_PrimarySingle(benchmark::State& state, const std::string& spec) {
   });
 }
 
-void BM_PrimaryPacket8(benchmark::State& state, const std::string& spec) {
+void BM_PrimaryStream(benchmark::State& state, const std::string& spec) {
   Fixture& f = fixture(spec);
   run_chunks(state, f.primary.size(), [&](size_t begin, size_t n) {
     Hit hits[64];
@@ -98,10 +98,10 @@ void BM_Shadow(benchmark::State& state, const std::string& spec) {
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_PrimarySingle, cornell, std::string("cornell"))->UseRealTime();
-BENCHMARK_CAPTURE(BM_PrimaryPacket8, cornell, std::string("cornell"))->UseRealTime();
+BENCHMARK_CAPTURE(BM_PrimaryStream, cornell, std::string("cornell"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_Shadow, cornell, std::string("cornell"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_PrimarySingle, cubes10000, std::string("cubes:10000"))->UseRealTime();
-BENCHMARK_CAPTURE(BM_PrimaryPacket8, cubes10000, std::string("cubes:10000"))->UseRealTime();
+BENCHMARK_CAPTURE(BM_PrimaryStream, cubes10000, std::string("cubes:10000"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_Shadow, cubes10000, std::string("cubes:10000"))->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -1,4 +1,5 @@
 #include "bounce/core/image_io.h"
+#include "bounce/core/tonemap.h"
 
 #include <unistd.h>
 
@@ -228,16 +229,6 @@ Bytes encode_png(int width, int height, const uint8_t* rgb) {
   const int ok = stbi_write_png_to_func(append, &sink, width, height, 3, rgb, width * 3);
   if (!ok || sink.failed) throw std::runtime_error("PNG encoding failed");
   return std::move(sink.bytes);
-}
-
-std::vector<uint8_t> tone_map_srgb8(const Image& image, float exposure_ev) {
-  const float scale = std::exp2(exposure_ev);
-  std::vector<uint8_t> rgb(image.pixel_count() * 3);
-  for (size_t i = 0; i < image.pixel_count(); ++i) {
-    const vec3 pixel = image.pixels()[i];
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = srgb8_from_linear(pixel[c], scale);
-  }
-  return rgb;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -479,7 +470,9 @@ void save_image(const std::string& path, const Image& image, float exposure_ev) 
   if (image.empty()) fail("cannot write {}: the image is empty", path);
   const Bytes bytes = encode_or_fail(path, [&] {
     if (ext == ".png") {
-      return encode_png(image.width(), image.height(), tone_map_srgb8(image, exposure_ev).data());
+      std::vector<uint8_t> rgb;
+      tonemap_srgb8(image, exposure_ev, rgb);
+      return encode_png(image.width(), image.height(), rgb.data());
     }
     return ext == ".exr" ? encode_exr(path, image) : encode_pfm(image);
   });

@@ -3,8 +3,8 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/qmc.h"
+#include "bounce/core/tonemap.h"
 #include "bounce/render/direct.h"
-#include "bounce/render/tonemap.h"
 
 namespace bounce {
 

@@ -40,7 +40,7 @@ class Tracer {
   virtual Hit intersect(const Ray& ray) const = 0;
   virtual bool occluded(const Ray& ray) const = 0;
   // Streams of rays. `coherent` says the rays are coherent (primary rays in pixel order), which
-  // lets the implementation trace them as packets.
+  // lets the implementation trace them as packets or coherent streams.
   virtual void intersect(std::span<const Ray> rays, std::span<Hit> hits,
                          bool coherent = false) const = 0;
   virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> blocked) const = 0;

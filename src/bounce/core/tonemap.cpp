@@ -1,4 +1,4 @@
-#include "bounce/render/tonemap.h"
+#include "bounce/core/tonemap.h"
 
 #include <cmath>
 
@@ -9,12 +9,13 @@ namespace bounce {
 
 void tonemap_srgb8(const Image& linear, float exposure_ev, std::vector<uint8_t>& out) {
   const float scale = std::exp2(exposure_ev);
+  const Srgb8Encoder& encoder = srgb8_encoder();
   out.resize(linear.pixel_count() * 3);
   parallel_for(
       linear.pixel_count(),
       [&](size_t i) {
-        const vec3 c = linear.pixels()[i];
-        for (int k = 0; k < 3; ++k) out[3 * i + k] = srgb8_from_linear(c[k], scale);
+        const vec3 c = linear.pixels()[i] * scale;
+        for (int k = 0; k < 3; ++k) out[3 * i + k] = encoder.encode(c[k]);
       },
       4096);
 }
