@@ -84,6 +84,8 @@ TEST(DirectLight, SphereLightMatchesAnalyticIrradiance) {
   Scene s = lit_square();
   const float radiance = 10.0f, radius = 0.2f, d = 1.0f;
   s.lights.push_back(Light::sphere(vec3(0.0f, d, 0.0f), radius, vec3(radiance)));
+  s.camera.position = vec3(0.0f, 0.5f, -2.0f);  // below the light: the light is in view otherwise
+  s.camera.up = vec3(0, 1, 0);
   const float expected = kPi * radiance * radius * radius / (d * d);
   EXPECT_NEAR(centre_irradiance(s, 256), expected, 0.01f * expected);
 }
@@ -117,6 +119,32 @@ TEST(DirectLight, EmissiveQuadMatchesAnalyticIrradianceAndIsOneSided) {
   std::swap(up.meshes[1].triangles[0].y, up.meshes[1].triangles[0].z);
   std::swap(up.meshes[1].triangles[1].y, up.meshes[1].triangles[1].z);
   EXPECT_NEAR(centre_irradiance(up), 0.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace bounce
+
+namespace bounce {
+namespace {
+
+TEST(DirectLight, SphereLightSeenDirectlyShowsItsRadiance) {
+  Scene s = lit_square();
+  s.lights.push_back(Light::sphere(vec3(0.0f, 1.0f, 0.0f), 0.1f, vec3(7.0f, 5.0f, 3.0f)));
+  s.finalize();
+  auto tracer = make_embree_tracer(s);
+  Renderer renderer(s, *tracer, make_technique("direct"));
+  FrameSettings settings;
+  settings.width = settings.height = kSize;
+  settings.light_samples = 4;
+  const Frame& f = renderer.render(s.camera, settings);
+  const size_t centre = size_t(kSize / 2) * kSize + kSize / 2;
+  EXPECT_EQ(f.color.pixels()[centre], vec3(7.0f, 5.0f, 3.0f));
+  EXPECT_FALSE(f.gbuffer.hit(centre));
+  EXPECT_NEAR(f.gbuffer.depth[centre], 3.0f - 1.0f - 0.1f, 1e-4f);  // camera 3 m above the floor
+  // A corner pixel sees the lit floor, not the light.
+  EXPECT_TRUE(f.gbuffer.hit(0));
+  EXPECT_GT(f.color.pixels()[0].x, 0.0f);
+  EXPECT_LT(f.color.pixels()[0].x, 7.0f);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "bounce/core/parallel.h"
+#include "bounce/render/light_sampling.h"
 #include "bounce/render/surface.h"
 
 namespace bounce {
@@ -24,12 +25,18 @@ void GBuffer::resize(int w, int h) {
 
 static void write_gbuffer_pixel(const Scene& scene, const CameraRays& camera, const Ray& ray,
                                 const Hit& hit, size_t i, GBuffer& g) {
-  if (!hit.valid()) {
+  const SphereLightHit light = intersect_sphere_lights(scene, ray.origin, ray.direction, hit.t);
+  if (!hit.valid() || light.light >= 0) {
     g.primitive[i] = kNoPrimitive;
     g.depth[i] = std::numeric_limits<float>::infinity();
     g.position[i] = g.normal[i] = g.geometric_normal[i] = vec3(0.0f);
     g.albedo[i] = g.f0[i] = g.emission[i] = vec3(0.0f);
     g.roughness[i] = 1.0f;
+    // A sphere light in front shows its radiance; it has no surface to shade.
+    if (light.light >= 0) {
+      g.emission[i] = scene.lights[light.light].radiance;
+      g.depth[i] = light.t * glm::dot(ray.direction, camera.forward);
+    }
     return;
   }
   const SurfaceHit s = surface_at(scene, hit, ray.direction);

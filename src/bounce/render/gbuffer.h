@@ -20,8 +20,10 @@ struct GBuffer {
   std::vector<vec3> albedo;            // diffuse albedo (texture applied)
   std::vector<float> roughness;        // GGX perceptual roughness
   std::vector<vec3> f0;                // specular reflectance at normal incidence
-  std::vector<vec3> emission;          // radiance emitted towards the camera (0 for back faces)
-  std::vector<float> depth;            // distance along the view axis; infinity on a miss
+  // Radiance emitted towards the camera (0 for back faces). A sphere light seen directly is a
+  // pixel with emission but no surface (primitive == kNoPrimitive).
+  std::vector<vec3> emission;
+  std::vector<float> depth;         // distance along the view axis; infinity on a miss
   std::vector<uint32_t> primitive;  // global triangle id (Scene::triangle_offsets), or kNoPrimitive
 
   void resize(int w, int h);

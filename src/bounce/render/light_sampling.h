@@ -100,6 +100,33 @@ inline float area_light_pdf(const Scene& scene, const AreaLight& light, vec3 p, 
   return cos_light > 0.0f ? d2 / (cos_light * light.area) : 0.0f;
 }
 
+// Distance along a unit-direction ray to the nearest sphere light's surface in (tmin, tmax),
+// with the light's index; index -1 when none is hit. Sphere lights are not in the Tracer's
+// geometry, so primary rays test them here to show them.
+struct SphereLightHit {
+  int light = -1;
+  float t = 0.0f;
+};
+inline SphereLightHit intersect_sphere_lights(const Scene& scene, vec3 origin, vec3 direction,
+                                              float tmax) {
+  SphereLightHit best;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    if (l.type != LightType::kSphere) continue;
+    const vec3 oc = l.position - origin;
+    const float b = glm::dot(oc, direction);
+    const float disc = b * b - (glm::dot(oc, oc) - l.radius * l.radius);
+    if (disc < 0.0f) continue;
+    const float root = std::sqrt(disc);
+    const float t = b - root > 0.0f ? b - root : b + root;
+    if (t > 0.0f && t < tmax) {
+      best = {int(i), t};
+      tmax = t;
+    }
+  }
+  return best;
+}
+
 // Unshadowed GGX specular from a sphere light by Karis' representative point with the widened
 // lobe's energy normalisation (seed 000 §5.2.1, Listings 5.1-5.2). Returns outgoing radiance.
 inline vec3 sphere_light_specular(const Light& light, const SurfacePoint& s, vec3 p, vec3 wo) {
