@@ -1,5 +1,7 @@
 #include "options.h"
 
+#include <fmt/format.h>
+
 #include "bounce/render/technique.h"
 
 namespace bounce::app {
@@ -44,7 +46,21 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   command.add_option("-p,--param", o.params,
-                     "Technique parameter NAME=VALUE (repeatable; see 'bounce render --help')");
+                     "Technique parameter NAME=VALUE (repeatable; listed below)");
+  command.footer(technique_parameters_help());
+}
+
+std::string technique_parameters_help() {
+  std::string text = "Technique parameters (--param NAME=VALUE):\n";
+  for (const auto& name : technique_names()) {
+    const auto technique = make_technique(name);
+    const auto& params = technique->params().all();
+    if (params.empty()) text += "  " + name + ": none\n";
+    for (const auto& p : params)
+      text += fmt::format("  {}: {} = {} [{}, {}]  {}\n", name, p.name, p.to_string(), p.min, p.max,
+                          p.help);
+  }
+  return text;
 }
 
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& o) {

@@ -26,6 +26,8 @@ struct FrameOptions {
 
 // Adds [SCENE] and the frame options to a command.
 void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
+// Lists every technique's parameters with their defaults and ranges (for --help).
+std::string technique_parameters_help();
 // Creates the technique and applies --param assignments to it (throws Error on a bad one).
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& options);
 

@@ -90,16 +90,6 @@ inline LightSample sample_area_light(const Scene& scene, const AreaLight& light,
   return s;
 }
 
-// Solid-angle pdf with which sample_area_light picks direction wi reaching point q on triangle
-// `ref` (for multiple importance sampling in the path tracer).
-inline float area_light_pdf(const Scene& scene, const AreaLight& light, vec3 p, vec3 q,
-                            vec3 light_face_normal) {
-  const vec3 d = q - p;
-  const float d2 = glm::dot(d, d);
-  const float cos_light = -glm::dot(light_face_normal, d / std::sqrt(d2));
-  return cos_light > 0.0f ? d2 / (cos_light * light.area) : 0.0f;
-}
-
 // Distance along a unit-direction ray to the nearest sphere light's surface in (tmin, tmax),
 // with the light's index; index -1 when none is hit. Sphere lights are not in the Tracer's
 // geometry, so primary rays test them here to show them.

@@ -83,6 +83,12 @@ Mesh make_mesh(const char* name) {
   return m;
 }
 
+// Sets the scene's camera (up is +y in every built-in scene).
+void place_camera(Scene& scene, vec3 position, vec3 look_at, float vfov_deg) {
+  scene.camera = Camera{position, look_at, vec3(0.0f, 1.0f, 0.0f), vfov_deg};
+  scene.has_camera = true;
+}
+
 }  // namespace
 
 // The measured Cornell box of scenes/cornell-box (see DESIGN.md): 16 quads = 32 triangles, the
@@ -90,11 +96,7 @@ Mesh make_mesh(const char* name) {
 Scene make_cornell() {
   Scene scene = load_obj_text(builtin_data::kCornellObj, builtin_data::kCornellMtl, "cornell");
   scene.source = "cornell";
-  scene.camera.position = vec3(0.278f, 0.273f, -0.800f);
-  scene.camera.look_at = vec3(0.278f, 0.273f, 0.0f);
-  scene.camera.up = vec3(0.0f, 1.0f, 0.0f);
-  scene.camera.vfov_deg = 39.3077f;
-  scene.has_camera = true;
+  place_camera(scene, vec3(0.278f, 0.273f, -0.800f), vec3(0.278f, 0.273f, 0.0f), 39.3077f);
   scene.finalize();
   return scene;
 }
@@ -151,11 +153,7 @@ Scene make_cubes(uint32_t cube_count, uint32_t seed) {
   scene.meshes.push_back(std::move(room));
   scene.meshes.push_back(std::move(light));
   scene.meshes.push_back(std::move(cubes));
-  scene.camera.position = vec3(0.0f, 3.0f, -4.8f);
-  scene.camera.look_at = vec3(0.0f, 2.0f, 0.0f);
-  scene.camera.up = vec3(0.0f, 1.0f, 0.0f);
-  scene.camera.vfov_deg = 60.0f;
-  scene.has_camera = true;
+  place_camera(scene, vec3(0.0f, 3.0f, -4.8f), vec3(0.0f, 2.0f, 0.0f), 60.0f);
   scene.finalize();
   return scene;
 }
@@ -179,11 +177,7 @@ Scene make_leak() {
   Light light = Light::sphere(vec3(1.0f, 1.5f, 2.0f), 0.1f, vec3(50.0f));
   light.name = "light";
   scene.lights.push_back(light);
-  scene.camera.position = vec3(0.3f, 1.6f, 0.3f);
-  scene.camera.look_at = vec3(2.0f, 0.8f, 2.6f);
-  scene.camera.up = vec3(0.0f, 1.0f, 0.0f);
-  scene.camera.vfov_deg = 60.0f;
-  scene.has_camera = true;
+  place_camera(scene, vec3(0.3f, 1.6f, 0.3f), vec3(2.0f, 0.8f, 2.6f), 60.0f);
   scene.finalize();
   return scene;
 }
