@@ -9,6 +9,7 @@
 namespace bounce {
 
 using glm::ivec2;
+using glm::ivec3;
 using glm::mat3;
 using glm::mat4;
 using glm::uvec2;
