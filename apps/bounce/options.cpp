@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+
+#include "bounce/core/error.h"
 #include "bounce/render/technique.h"
 
 namespace bounce::app {
@@ -45,6 +48,15 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_option("-j,--threads", o.threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
+  command.add_option("--photons", o.photons, "Photon paths per frame (photon techniques)");
+  command.add_option("--radius", o.radius,
+                     "Gather radius: scene units (0.05) or percent of the scene diagonal (3%)");
+  command.add_option("--bounces", o.bounces,
+                     "Photon bounces: -1 = until Russian roulette ends the path, 1 = the seed's");
+  command.add_option("--lowres", o.lowres, "Indirect light at 1/N of the width and height");
+  command.add_option("--tile", o.tile, "Screen tile size in pixels (tile gather)");
+  command.add_option("--gather", o.gather, "Density estimation: tiles or grid")
+      ->check(CLI::IsMember({"tiles", "grid"}));
   command.add_option("-p,--param", o.params,
                      "Technique parameter NAME=VALUE (repeatable; listed below)");
   command.footer(technique_parameters_help());
@@ -63,10 +75,45 @@ std::string technique_parameters_help() {
   return text;
 }
 
+namespace {
+void apply_parameters(const FrameOptions& o, ParamSet& params);
+}  // namespace
+
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& o) {
   auto technique = make_technique(o.technique);
-  for (const auto& assignment : o.params) technique->params().set_assignment(assignment);
+  try {
+    apply_parameters(o, technique->params());
+  } catch (const Error& e) {
+    fail("technique '{}': {}", o.technique, e.what());
+  }
   return technique;
 }
+
+namespace {
+void apply_parameters(const FrameOptions& o, ParamSet& params) {
+  const auto shortcut = [&](const std::string& value, const std::string& name) {
+    if (!value.empty()) params.set(name, value);
+  };
+  shortcut(o.photons, "photons");
+  shortcut(o.bounces, "bounces");
+  shortcut(o.lowres, "lowres");
+  shortcut(o.tile, "tile");
+  if (!o.gather.empty()) params.set("gather", o.gather == "tiles" ? "0" : "1");
+  if (!o.radius.empty()) {
+    if (o.radius.back() == '%') {
+      // Percent of the diagonal, as the relative radius; "0" turns the absolute one off.
+      const std::string number = o.radius.substr(0, o.radius.size() - 1);
+      char* end = nullptr;
+      const double percent = std::strtod(number.c_str(), &end);
+      if (number.empty() || *end != '\0') fail("--radius: '{}' is not a percentage", o.radius);
+      params.set("radius_rel", fmt::format("{}", percent / 100.0));
+      params.set("radius", "0");
+    } else {
+      params.set("radius", o.radius);
+    }
+  }
+  for (const auto& assignment : o.params) params.set_assignment(assignment);
+}
+}  // namespace
 
 }  // namespace bounce::app

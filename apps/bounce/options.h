@@ -12,7 +12,7 @@ namespace bounce::app {
 
 struct FrameOptions {
   std::string scene = "cornell";
-  std::string technique = "direct";
+  std::string technique = "tiled";
   int width = 512;
   int height = 512;
   int light_samples = 16;
@@ -20,6 +20,8 @@ struct FrameOptions {
   uint32_t seed = 0;
   int threads = 0;
   std::vector<std::string> params;
+  // Photon-mapping shortcuts for --param (empty: the technique's default).
+  std::string photons, radius, bounces, lowres, tile, gather;
 
   FrameSettings settings() const;
 };

@@ -58,6 +58,11 @@ TEST(Cli, BadArgumentsAreRejectedWithAMessage) {
       {"render cubes:abc", "cubes:abc"},
       {"info", "scene"},
       {"bench cornell --frames 0", "frames"},
+      {"render -W 8 -H 8 --radius abc", "radius"},
+      {"render -W 8 -H 8 --radius 5x%", "percentage"},
+      {"render -W 8 -H 8 --gather nope", "gather"},
+      {"render -W 8 -H 8 -t direct --photons 10",
+       "technique 'direct': unknown parameter 'photons'"},
   };
   for (const auto& [args, expected] : cases) {
     const Result r = run(args);
@@ -65,6 +70,16 @@ TEST(Cli, BadArgumentsAreRejectedWithAMessage) {
     EXPECT_NE(r.status, -1) << args << " crashed";
     EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
   }
+}
+
+TEST(Cli, PhotonOptionsReachTheTechnique) {
+  const fs::path dir = scratch_dir("photons");
+  const Result r =
+      run("render -W 24 -H 24 --spp 1 --photons 500 --radius 4% --bounces 2 "
+          "--lowres 1 --tile 4 --gather tiles -o " +
+          (dir / "t.png").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("indirect/tile bins"), std::string::npos) << r.output;
 }
 
 TEST(Cli, MissingSceneFileIsNamed) {

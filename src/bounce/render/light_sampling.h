@@ -83,7 +83,7 @@ inline LightSample sample_area_light(const Scene& scene, const AreaLight& light,
   if (d2 <= 0.0f) return s;
   s.distance = std::sqrt(d2);
   s.wi = to_light / s.distance;
-  const float cos_light = -glm::dot(glm::normalize(mesh.face_normal_area2(ref.triangle)), s.wi);
+  const float cos_light = -glm::dot(light.normals[k], s.wi);
   if (cos_light <= 0.0f) return s;  // behind the emitting face
   s.pdf = d2 / (cos_light * light.area);
   s.weight = light.radiance / s.pdf;

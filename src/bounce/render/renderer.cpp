@@ -41,10 +41,12 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   if (indirect) {
     ScopedStage stage(f.times, "indirect");
     f.indirect = Image(w, h);
-    FrameContext context{scene_, tracer_, f.gbuffer, rays, frame_index_, f.times};
+    f.technique = TechniqueCounters{};
+    FrameContext context{scene_, tracer_, f.gbuffer, rays, frame_index_, f.times, f.technique};
     technique_->indirect(context, f.indirect);
   } else {
     f.indirect = Image();
+    f.technique = TechniqueCounters{};
   }
   {
     ScopedStage stage(f.times, "composite");

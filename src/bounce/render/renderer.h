@@ -34,6 +34,7 @@ struct Frame {
   StageTimes times;
   uint64_t primary_rays = 0;
   uint64_t shadow_rays = 0;
+  TechniqueCounters technique;  // photons and rays of the indirect stage
 };
 
 class Renderer {

@@ -18,6 +18,13 @@
 
 namespace bounce {
 
+// What a technique did in one frame, for benchmarks (photons per second, rays per second).
+struct TechniqueCounters {
+  uint64_t photon_paths = 0;
+  uint64_t photons_stored = 0;
+  uint64_t rays = 0;
+};
+
 struct FrameContext {
   const Scene& scene;
   const Tracer& tracer;
@@ -25,6 +32,7 @@ struct FrameContext {
   const CameraRays& camera;
   uint32_t frame_index;  // counts frames since the pipeline started
   StageTimes& times;     // a technique adds its sub-stages here, named "indirect/..."
+  TechniqueCounters& counters;
 };
 
 class Technique {

@@ -120,10 +120,11 @@ void Scene::finalize() {
       int& li = light_of_material[m.materials[t]];
       if (li < 0) {
         li = int(area_lights.size());
-        area_lights.push_back({m.name + "/" + mat.name, mat.emission, {}, {}, 0.0f});
+        area_lights.push_back({m.name + "/" + mat.name, mat.emission, {}, {}, {}, 0.0f});
       }
       AreaLight& al = area_lights[li];
       al.triangles.push_back({mi, t});
+      al.normals.push_back(glm::normalize(m.face_normal_area2(t)));
       al.area += area;
       al.cdf.push_back(al.area);
     }

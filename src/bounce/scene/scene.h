@@ -25,8 +25,9 @@ struct AreaLight {
   std::string name;
   vec3 radiance{0.0f};  // emitted radiance, W/(sr m^2)
   std::vector<TriangleRef> triangles;
-  std::vector<float> cdf;  // cumulative triangle area / total area; cdf.back() == 1
-  float area = 0.0f;       // m^2
+  std::vector<vec3> normals;  // unit front-face normal of each triangle
+  std::vector<float> cdf;     // cumulative triangle area / total area; cdf.back() == 1
+  float area = 0.0f;          // m^2
 
   vec3 power() const { return radiance * (kPi * area); }
 };

@@ -1,0 +1,41 @@
+// Where photon paths start: every light (point, spot, directional, sphere, emissive triangles)
+// as one list, chosen in proportion to power.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bounce/core/math.h"
+#include "bounce/scene/scene.h"
+
+namespace bounce {
+
+struct EmittedPhoton {
+  vec3 origin;
+  vec3 direction;
+  vec3 flux;  // W carried by the path
+};
+
+struct PhotonEmitters {
+  enum class Kind : uint8_t { kLight, kArea };
+  struct Entry {
+    Kind kind;
+    uint32_t index;  // into Scene::lights or Scene::area_lights
+    vec3 power;
+  };
+  std::vector<Entry> entries;
+  std::vector<float> cdf;  // by summed channel power; cdf.back() == 1
+  vec3 total_power{0.0f};
+  float scene_radius = 0.0f;  // covers the scene, for directional lights
+  vec3 scene_centre{0.0f};
+
+  static PhotonEmitters from(const Scene& scene);
+  bool empty() const { return entries.empty(); }
+};
+
+// Emits path i of n: u (stratified over the paths) picks the light and the point on it, v (random)
+// the direction. Flux is normalised so that the paths' expected total equals the lights' power.
+EmittedPhoton emit_photon(const Scene& scene, const PhotonEmitters& emitters, vec2 u, vec2 v,
+                          uint32_t path_count);
+
+}  // namespace bounce
