@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   bounce::app::add_render_command(app);
   bounce::app::add_info_command(app);
   bounce::app::add_bench_command(app);
+  bounce::app::add_reference_command(app);
+  bounce::app::add_compare_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

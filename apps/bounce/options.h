@@ -37,5 +37,7 @@ std::unique_ptr<Technique> make_configured_technique(const FrameOptions& options
 void add_render_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_reference_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace bounce::app

@@ -488,4 +488,8 @@ void save_png_rgb8(const std::string& path, int width, int height, const uint8_t
   write_file_atomically(path, bytes);
 }
 
+void save_text_file(const std::string& path, const std::string& text) {
+  write_file_atomically(path, Bytes(text.begin(), text.end()));
+}
+
 }  // namespace bounce

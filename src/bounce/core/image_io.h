@@ -23,4 +23,7 @@ void save_image(const std::string& path, const Image& image, float exposure_ev =
 // first) as a PNG.
 void save_png_rgb8(const std::string& path, int width, int height, const uint8_t* rgb);
 
+// Writes text (a JSON report, ...) to `path` with the same atomic rename as the image savers.
+void save_text_file(const std::string& path, const std::string& text);
+
 }  // namespace bounce

@@ -5,6 +5,7 @@
 #include "bounce/core/error.h"
 #include "bounce/render/technique.h"
 #include "bounce/techniques/direct/direct_only.h"
+#include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/tiled/tiled.h"
 
 namespace bounce {
@@ -16,6 +17,7 @@ using Factory = std::function<std::unique_ptr<Technique>()>;
 const std::vector<std::pair<std::string, Factory>>& registry() {
   static const std::vector<std::pair<std::string, Factory>> techniques = {
       {"direct", [] { return std::make_unique<DirectOnly>(); }},
+      {"path", [] { return std::make_unique<PathTracing>(); }},
       {"tiled", [] { return std::make_unique<TiledPhotonMapping>(); }},
   };
   return techniques;

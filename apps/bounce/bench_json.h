@@ -1,0 +1,31 @@
+// bench --json: a machine-readable record of a benchmark run (timings, throughput, build, machine).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bounce/core/timer.h"
+#include "bounce/render/renderer.h"
+
+namespace bounce::app {
+
+struct BenchRecord {
+  std::string scene;
+  std::string technique;
+  std::vector<std::pair<std::string, std::string>> params;  // the technique's, name and value
+  FrameSettings settings;
+  int frames = 0;
+  int warmup = 0;
+  int threads = 0;
+  const StageStatistics* stats = nullptr;
+  // Totals over the timed frames.
+  double primary_rays = 0.0, shadow_rays = 0.0, technique_rays = 0.0;
+  double photon_paths = 0.0, photons_stored = 0.0;
+  double gbuffer_ms = 0.0, direct_ms = 0.0, indirect_ms = 0.0;
+};
+
+// Writes the record as JSON to `path`, atomically (a temporary file renamed over the target).
+void write_bench_json(const std::string& path, const BenchRecord& record);
+
+}  // namespace bounce::app

@@ -1,0 +1,162 @@
+// bounce reference: a converged path-traced image (the ground truth), with progress and ETA.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "bounce/core/error.h"
+#include "bounce/core/image_io.h"
+#include "bounce/core/parallel.h"
+#include "bounce/scene/load.h"
+#include "bounce/techniques/path/reference.h"
+#include "options.h"
+
+namespace bounce::app {
+
+namespace {
+
+struct ReferenceOptions {
+  std::string scene = "cornell";
+  int width = 256;
+  int height = 256;
+  int spp = 1024;
+  double time_s = 0.0;
+  int max_bounces = -1;
+  int rr_start = 3;
+  uint32_t seed = 0;
+  int threads = 0;
+  float exposure_ev = 0.0f;
+  std::string out;
+};
+
+std::string clock_text(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
+  return fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+std::string default_output(const std::string& scene) {
+  std::string stem = std::filesystem::path(scene).filename().string();
+  for (const char* ext : {".bounce.json", ".json", ".obj", ".gltf", ".glb"})
+    if (stem.size() > std::strlen(ext) && stem.ends_with(ext)) {
+      stem.resize(stem.size() - std::strlen(ext));
+      break;
+    }
+  for (char& c : stem)
+    if (c == ':') c = '-';
+  return "out/" + stem + "-reference.exr";
+}
+
+// Progress on stderr: rewritten in place on a terminal, one line per tenth of the work otherwise.
+class ProgressLine {
+ public:
+  ProgressLine() : terminal_(isatty(fileno(stderr)) != 0) {}
+  void update(const ReferenceProgress& p) {
+    const int percent = int(std::floor(100.0 * p.fraction));
+    const std::string text =
+        fmt::format("reference: {:3}% ({}/{} spp), elapsed {}, ETA {}", percent, p.spp_done,
+                    p.spp_target, clock_text(p.elapsed_s), clock_text(p.eta_s));
+    if (terminal_) {
+      fmt::print(stderr, "\r{:<72}", text);
+      std::fflush(stderr);
+      dirty_ = true;
+    } else if (percent / 10 > last_tenth_) {
+      last_tenth_ = percent / 10;
+      fmt::print(stderr, "{}\n", text);
+    }
+  }
+  void finish() {
+    if (dirty_) fmt::print(stderr, "\n");
+  }
+
+ private:
+  bool terminal_;
+  bool dirty_ = false;
+  int last_tenth_ = -1;
+};
+
+void run_reference(const ReferenceOptions& o) {
+  const ThreadLimit limit(o.threads);
+  const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
+  const Scene scene = load_scene(o.scene);
+  auto tracer = make_embree_tracer(scene);
+  ReferenceSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.spp = o.spp;
+  settings.time_limit_s = o.time_s;
+  settings.seed = o.seed;
+  settings.path.max_bounces = o.max_bounces;
+  settings.path.rr_start = o.rr_start;
+
+  // Fail on a bad output name now, not after minutes of rendering.
+  std::string ext = std::filesystem::path(out).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".exr" && ext != ".pfm" && ext != ".png")
+    fail("cannot write {}: the output must end in .exr, .pfm or .png", out);
+  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+
+  ProgressLine line;
+  const ReferenceResult r = render_reference(scene, *tracer, scene.camera, settings,
+                                             [&](const ReferenceProgress& p) { line.update(p); });
+  line.finish();
+  save_image(out, r.image, o.exposure_ev);
+  const std::string bounces =
+      o.max_bounces < 0 ? std::string("unlimited") : fmt::format("{}", o.max_bounces);
+  fmt::print("reference {} {}x{}: {} spp, max bounces {}, seed {}\n", scene.source, o.width,
+             o.height, r.spp, bounces, o.seed);
+  fmt::print("time {:.1f} s, {:.1f} M rays ({:.2f} M rays/s)\n", r.seconds, r.rays * 1e-6,
+             r.seconds > 0.0 ? r.rays * 1e-6 / r.seconds : 0.0);
+  if (r.nonfinite > 0) warn(fmt::format("{} non-finite samples were dropped", r.nonfinite));
+  fmt::print("wrote {}\n", out);
+}
+
+}  // namespace
+
+void add_reference_command(CLI::App& app) {
+  auto o = std::make_shared<ReferenceOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "reference", "Path-trace a converged reference image (no SCENE: the Cornell box)");
+  cmd->add_option("scene", o->scene,
+                  "Scene: cornell, cubes:N[:SEED], leak, or a .obj, .gltf, .glb or .bounce.json "
+                  "file")
+      ->capture_default_str();
+  cmd->add_option("-W,--width", o->width, "Image width in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  cmd->add_option("-H,--height", o->height, "Image height in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  cmd->add_option("--spp", o->spp, "Samples (paths) per pixel")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  cmd->add_option("--time", o->time_s,
+                  "Stop after this many seconds even if --spp is not reached (0: no limit)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+  cmd->add_option("--max-bounces", o->max_bounces,
+                  "Indirect bounces counted: 0 direct light only, 1 one bounce, ...; -1 no limit")
+      ->check(CLI::Range(-1, 1024))
+      ->capture_default_str();
+  cmd->add_option("--rr-start", o->rr_start,
+                  "Path vertex from which Russian roulette may end paths")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the paths' random numbers")->capture_default_str();
+  cmd->add_option("-j,--threads", o->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--exposure", o->exposure_ev, "Exposure in stops for PNG output")
+      ->capture_default_str();
+  cmd->add_option("-o,--out", o->out,
+                  "Output: .exr or .pfm (linear), .png (tone-mapped); default "
+                  "out/SCENE-reference.exr");
+  cmd->callback([o] { run_reference(*o); });
+}
+
+}  // namespace bounce::app

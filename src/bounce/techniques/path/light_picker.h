@@ -1,0 +1,43 @@
+// Which light a path vertex samples: one light per vertex, chosen with probability proportional
+// to its power, so that many lights cost one shadow ray. Built once per scene; the pick itself is
+// a plain function over plain arrays.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bounce/scene/scene.h"
+
+namespace bounce {
+
+struct LightPicker {
+  // Entries are Scene::lights (0 .. light_count - 1), then Scene::area_lights.
+  uint32_t light_count = 0;
+  std::vector<float> cdf;  // cumulative probability; empty when nothing emits
+  std::vector<float> pmf;  // probability of each entry
+  // Area light of each triangle by global id (Scene::triangle_offsets), -1 for non-emitters.
+  std::vector<int32_t> area_light_of_triangle;
+  bool has_sphere_lights = false;
+
+  static LightPicker build(const Scene& scene);
+
+  bool empty() const { return cdf.empty(); }
+  // The entry that u in [0, 1) selects (binary search over the cdf).
+  uint32_t pick(float u) const {
+    uint32_t lo = 0, hi = uint32_t(cdf.size()) - 1;
+    while (lo < hi) {
+      const uint32_t mid = (lo + hi) / 2;
+      if (u < cdf[mid])
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    return lo;
+  }
+  float light_pmf(uint32_t light) const { return empty() ? 0.0f : pmf[light]; }
+  float area_light_pmf(uint32_t area_light) const {
+    return empty() ? 0.0f : pmf[light_count + area_light];
+  }
+};
+
+}  // namespace bounce
