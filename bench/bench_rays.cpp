@@ -1,5 +1,6 @@
 // Ray throughput of the Tracer on the scenes of docs/benchmarks.md at 512x512: primary rays
-// (one by one, and as a coherent stream) and shadow rays (a stream) towards the first light.
+// (one by one, as a stream flagged incoherent and as a coherent stream) and shadow rays (a
+// stream) towards the first light.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -68,6 +69,15 @@ void BM_PrimarySingle(benchmark::State& state, const std::string& spec) {
   Fixture& f = fixture(spec);
   run_chunks(state, f.primary.size(), [&](size_t begin, size_t n) {
     Hit hits[64];
+    for (size_t k = 0; k < n; ++k) hits[k] = f.tracer->intersect(f.primary[begin + k]);
+    benchmark::DoNotOptimize(hits);
+  });
+}
+
+void BM_PrimaryIncoherentStream(benchmark::State& state, const std::string& spec) {
+  Fixture& f = fixture(spec);
+  run_chunks(state, f.primary.size(), [&](size_t begin, size_t n) {
+    Hit hits[64];
     f.tracer->intersect(std::span<const Ray>(f.primary.data() + begin, n), std::span<Hit>(hits, n),
                         false);
     benchmark::DoNotOptimize(hits);
@@ -98,9 +108,12 @@ void BM_Shadow(benchmark::State& state, const std::string& spec) {
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_PrimarySingle, cornell, std::string("cornell"))->UseRealTime();
+BENCHMARK_CAPTURE(BM_PrimaryIncoherentStream, cornell, std::string("cornell"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_PrimaryStream, cornell, std::string("cornell"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_Shadow, cornell, std::string("cornell"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_PrimarySingle, cubes10000, std::string("cubes:10000"))->UseRealTime();
+BENCHMARK_CAPTURE(BM_PrimaryIncoherentStream, cubes10000, std::string("cubes:10000"))
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_PrimaryStream, cubes10000, std::string("cubes:10000"))->UseRealTime();
 BENCHMARK_CAPTURE(BM_Shadow, cubes10000, std::string("cubes:10000"))->UseRealTime();
 

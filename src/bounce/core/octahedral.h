@@ -31,7 +31,11 @@ inline vec3 oct_decode(vec2 e) {
 
 inline uint32_t oct_pack(vec3 v) {
   const vec2 e = glm::clamp(oct_encode(v), vec2(-1.0f), vec2(1.0f));
-  const auto q = [](float f) { return uint32_t(int32_t(std::lround(f * 32767.0f)) & 0xFFFF); };
+  // Round half away from zero by hand: std::lround is a library call here.
+  const auto q = [](float f) {
+    const float scaled = f * 32767.0f;
+    return uint32_t(int32_t(scaled + (scaled >= 0.0f ? 0.5f : -0.5f)) & 0xFFFF);
+  };
   return q(e.x) | (q(e.y) << 16);
 }
 

@@ -1,5 +1,7 @@
 #include "bounce/render/photon_tracing.h"
 
+#include <array>
+
 #include "bounce/core/octahedral.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/qmc.h"
@@ -22,43 +24,68 @@ struct PathTracePass {
   vec2 rotation;    // Cranley-Patterson shift of the Hammersley set for this pass
   uint32_t stream;  // TEA stream for this pass
 
-  // Traces path i, appending its photons to `out`; returns the rays traced.
-  uint64_t trace_path(uint32_t i, PhotonBuffer& out) const {
-    TeaRng rng = TeaRng::for_path(i, stream);
-    const vec2 u = rotate_unit(hammersley(i, settings.paths), rotation);
-    const EmittedPhoton e = emit_photon(scene, emitters, u, rng.next2(), settings.paths);
-    vec3 flux = e.flux;
-    Ray ray{e.origin, 0.0f, e.direction};
+  struct PathState {
+    Ray ray;
+    vec3 flux;
+    TeaRng rng;
+  };
+
+  // Traces paths [begin, end) a bounce at a time, each bounce's rays as one stream; appends
+  // their photons to `out` (bounce by bounce, path order within a bounce). Returns rays traced.
+  uint64_t trace_chunk(uint32_t begin, uint32_t end, PhotonBuffer& out) const {
+    std::array<PathState, kPathsPerChunk> paths;
+    std::array<Ray, kPathsPerChunk> rays;
+    std::array<Hit, kPathsPerChunk> hits;
+    size_t active = 0;
+    for (uint32_t i = begin; i < end; ++i) {
+      TeaRng rng = TeaRng::for_path(i, stream);
+      const vec2 u = rotate_unit(hammersley(i, settings.paths), rotation);
+      const EmittedPhoton e = emit_photon(scene, emitters, u, rng.next2(), settings.paths);
+      paths[active++] = {Ray{e.origin, 0.0f, e.direction}, e.flux, rng};
+    }
     const bool roulette = settings.max_bounces < 0;
     const int max_depth = roulette ? kMaxPhotonDepth : settings.max_bounces;
-    uint64_t rays = 0;
-    for (int depth = 0;; ++depth) {
-      const Hit hit = tracer.intersect(ray);
-      ++rays;
-      if (!hit.valid()) break;
-      const SurfaceHit s = surface_at(scene, hit, ray.direction);
-      if (depth >= 1) {
-        out.position.push_back(s.position);
-        out.flux.push_back(flux);
-        out.incident.push_back(oct_pack(ray.direction));
-        out.normal.push_back(oct_pack(s.normal));
-      }
-      if (depth >= max_depth) break;
-      // Diffuse bounce, cosine-weighted: the Lambert BRDF times cosine over the pdf is the albedo.
-      const vec2 r = rng.next2();
-      if (roulette) {
-        const float survive = glm::min(1.0f, max_component(s.albedo));
-        if (!(r.x < survive)) break;
-        flux *= s.albedo / survive;
-      } else {
-        flux *= s.albedo;
-        if (!(max_component(flux) > 0.0f)) break;
-      }
-      const vec3 dir = Basis::from_normal(s.normal).to_world(sample_cosine_hemisphere(rng.next2()));
-      if (glm::dot(dir, s.geometric_normal) <= 0.0f) break;  // shading normal points into the face
-      ray = Ray{offset_origin(s.position, s.geometric_normal), 0.0f, dir};
+    uint64_t traced = 0;
+    for (int depth = 0; active > 0; ++depth) {
+      for (size_t k = 0; k < active; ++k) rays[k] = paths[k].ray;
+      tracer.intersect(std::span<const Ray>(rays.data(), active),
+                       std::span<Hit>(hits.data(), active), false);
+      traced += active;
+      size_t next = 0;
+      for (size_t k = 0; k < active; ++k)
+        if (bounce(paths[k], hits[k], depth, max_depth, roulette, out)) paths[next++] = paths[k];
+      active = next;
     }
-    return rays;
+    return traced;
+  }
+
+  // Deposits the photon at a hit (after the first) and scatters the path; false when it ends.
+  bool bounce(PathState& path, const Hit& hit, int depth, int max_depth, bool roulette,
+              PhotonBuffer& out) const {
+    if (!hit.valid()) return false;
+    const SurfaceHit s = surface_at(scene, hit, path.ray.direction);
+    if (depth >= 1) {
+      out.position.push_back(s.position);
+      out.flux.push_back(path.flux);
+      out.incident.push_back(oct_pack(path.ray.direction));
+      out.normal.push_back(oct_pack(s.normal));
+    }
+    if (depth >= max_depth) return false;
+    // Diffuse bounce, cosine-weighted: the Lambert BRDF times cosine over the pdf is the albedo.
+    const vec2 r = path.rng.next2();
+    if (roulette) {
+      const float survive = glm::min(1.0f, max_component(s.albedo));
+      if (!(r.x < survive)) return false;
+      path.flux *= s.albedo / survive;
+    } else {
+      path.flux *= s.albedo;
+      if (!(max_component(path.flux) > 0.0f)) return false;
+    }
+    const vec3 dir =
+        Basis::from_normal(s.normal).to_world(sample_cosine_hemisphere(path.rng.next2()));
+    if (glm::dot(dir, s.geometric_normal) <= 0.0f) return false;  // shading normal points inside
+    path.ray = Ray{offset_origin(s.position, s.geometric_normal), 0.0f, dir};
+    return true;
   }
 };
 
@@ -92,7 +119,7 @@ PhotonTraceStats PhotonTracer::trace(const Scene& scene, const Tracer& tracer,
         chunk.clear();
         const uint32_t begin = uint32_t(c * kPathsPerChunk);
         const uint32_t end = std::min(settings.paths, begin + kPathsPerChunk);
-        for (uint32_t i = begin; i < end; ++i) rays[c] += pass.trace_path(i, chunk);
+        rays[c] = pass.trace_chunk(begin, end, chunk);
       },
       1);
 

@@ -7,6 +7,7 @@
 
 #include "bounce/core/math.h"
 #include "bounce/core/octahedral.h"
+#include "bounce/core/parallel.h"
 
 namespace bounce {
 
@@ -50,10 +51,13 @@ struct PhotonBuffer {
 inline void PhotonBuffer::unpack_directions() {
   incident_dir.resize(size());
   normal_dir.resize(size());
-  for (size_t i = 0; i < size(); ++i) {
-    incident_dir[i] = oct_unpack(incident[i]);
-    normal_dir[i] = oct_unpack(normal[i]);
-  }
+  parallel_for(
+      size(),
+      [&](size_t i) {
+        incident_dir[i] = oct_unpack(incident[i]);
+        normal_dir[i] = oct_unpack(normal[i]);
+      },
+      1024);
 }
 
 }  // namespace bounce

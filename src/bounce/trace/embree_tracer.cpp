@@ -1,6 +1,7 @@
-// The CPU Tracer on Embree 3: one triangle geometry per mesh (geometry id = mesh index), single
-// rays through rtcIntersect1/rtcOccluded1 and streams through Embree's stream API (rtcIntersect1M,
-// rtcOccluded1M), which measured faster here than our own 8-wide packets (docs/benchmarks.md).
+// The CPU Tracer on Embree 3: one triangle geometry per mesh (geometry id = mesh index). Single
+// rays go through rtcIntersect1/rtcOccluded1, every span of rays through Embree's stream API
+// (rtcIntersect1M, rtcOccluded1M, flagged coherent or not), which measured faster here than our
+// own 8-wide packets and than single rays (docs/benchmarks.md).
 #include <embree3/rtcore.h>
 
 #include <atomic>
@@ -84,13 +85,10 @@ class EmbreeTracer final : public Tracer {
   }
 
   void intersect(std::span<const Ray> rays, std::span<Hit> hits, bool coherent) const override {
-    if (!coherent) {
-      for (size_t i = 0; i < rays.size(); ++i) hits[i] = intersect(rays[i]);
-      return;
-    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.flags =
+        coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     constexpr size_t kChunk = 64;
     RTCRayHit chunk[kChunk];
     for (size_t base = 0; base < rays.size(); base += kChunk) {

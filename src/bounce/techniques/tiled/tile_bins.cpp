@@ -87,17 +87,31 @@ void TileBins::build(const GBuffer& g, const CameraRays& camera, const PhotonBuf
       },
       1024);
 
-  // Rows of tiles are independent: each walks the photons in order, first counting, then (after
+  // Each photon is listed under the tile rows its bounds cover (counting sort, photon order
+  // within a row), so a row visits only its own photons.
+  row_start_.assign(size_t(tiles_y_) + 1, 0);
+  for (size_t i = 0; i < n; ++i)
+    for (int ty = photon_tiles_y_[i].x; ty <= photon_tiles_y_[i].y; ++ty) ++row_start_[ty + 1];
+  for (int ty = 0; ty < tiles_y_; ++ty) row_start_[ty + 1] += row_start_[ty];
+  row_photons_.resize(row_start_[tiles_y_]);
+  {
+    std::vector<uint32_t> cursor(row_start_.begin(), row_start_.end() - 1);
+    for (size_t i = 0; i < n; ++i)
+      for (int ty = photon_tiles_y_[i].x; ty <= photon_tiles_y_[i].y; ++ty)
+        row_photons_[cursor[ty]++] = uint32_t(i);
+  }
+
+  // Rows of tiles are independent: each walks its photons in order, first counting, then (after
   // the prefix sum) inserting, so every list is in photon order.
   counts_.assign(tiles, 0);
   const auto walk_row = [&](int ty, auto&& on_overlap) {
-    for (size_t i = 0; i < n; ++i) {
-      if (ty < photon_tiles_y_[i].x || ty > photon_tiles_y_[i].y) continue;
+    for (uint32_t r = row_start_[ty]; r < row_start_[ty + 1]; ++r) {
+      const uint32_t i = row_photons_[r];
       const vec3 p = photons.position[i] - camera.origin;
       const float depth = glm::dot(p, camera.forward);
       for (int tx = photon_tiles_x_[i].x; tx <= photon_tiles_x_[i].y; ++tx) {
         const size_t t = size_t(ty) * tiles_x_ + tx;
-        if (overlaps(frusta_[t], p, depth, radius)) on_overlap(t, uint32_t(i));
+        if (overlaps(frusta_[t], p, depth, radius)) on_overlap(t, i);
       }
     }
   };

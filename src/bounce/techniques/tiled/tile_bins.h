@@ -44,6 +44,8 @@ class TileBins {
   std::vector<TileFrustum> frusta_;
   std::vector<ivec2> photon_tiles_x_;  // inclusive tile column range of each photon's bounds
   std::vector<ivec2> photon_tiles_y_;  // inclusive tile row range
+  std::vector<uint32_t> row_start_;    // photons of each tile row, by counting sort
+  std::vector<uint32_t> row_photons_;
   std::vector<uint32_t> counts_;
   std::vector<uint32_t> offsets_;
   std::vector<uint32_t> indices_;

@@ -194,10 +194,17 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
 
   // Progressive photon mapping as the average of independent passes whose radius shrinks
   // (Knaus and Zwicker 2011): r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1).
-  accumulated_ += pass_estimate_;
   ++passes_;
   radius2_ *= (float(passes_ - 1) + settings_.alpha) / float(passes_);
-  out = accumulated_ * (1.0f / float(passes_));
+  const float inv_passes = 1.0f / float(passes_);
+  parallel_for(
+      out.pixel_count(),
+      [&](size_t i) {
+        vec3& sum = accumulated_.pixels()[i];
+        sum += pass_estimate_.pixels()[i];
+        out.pixels()[i] = sum * inv_passes;
+      },
+      4096);
 }
 
 }  // namespace bounce
