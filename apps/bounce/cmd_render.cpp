@@ -16,7 +16,7 @@ namespace {
 
 struct RenderOptions {
   FrameOptions frame;
-  int spp = 4;
+  int spp = 16;
   std::string out;
 };
 
@@ -32,6 +32,16 @@ std::string default_output(const std::string& scene) {
   return "out/" + stem + ".png";
 }
 
+// A still image affords more photons per pass than a real-time frame: unless told otherwise,
+// photon techniques trace kStillPhotons paths per pass here (bench keeps their own default).
+constexpr const char* kStillPhotons = "20000";
+
+std::unique_ptr<Technique> make_still_technique(FrameOptions o) {
+  if (o.photons.empty() && make_technique(o.technique)->params().find("photons"))
+    o.photons = kStillPhotons;
+  return make_configured_technique(o);
+}
+
 void run_render(const RenderOptions& o) {
   const ThreadLimit limit(o.frame.threads);
   const std::string out = o.out.empty() ? default_output(o.frame.scene) : o.out;
@@ -39,7 +49,7 @@ void run_render(const RenderOptions& o) {
   const Scene scene = load_scene(o.frame.scene);
   const double load_ms = load_watch.elapsed_ms();
   auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
+  Renderer renderer(scene, *tracer, make_still_technique(o.frame));
   FrameSettings settings = o.frame.settings();
   settings.jitter = o.spp > 1;
 

@@ -48,7 +48,8 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_option("-j,--threads", o.threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  command.add_option("--photons", o.photons, "Photon paths per frame (photon techniques)");
+  command.add_option("--photons", o.photons,
+                     "Photon paths per frame (photon techniques; render: 20000 unless given)");
   command.add_option("--radius", o.radius,
                      "Gather radius: scene units (0.05) or percent of the scene diagonal (3%)");
   command.add_option("--bounces", o.bounces,
