@@ -40,15 +40,7 @@ std::string clock_text(double seconds) {
 }
 
 std::string default_output(const std::string& scene) {
-  std::string stem = std::filesystem::path(scene).filename().string();
-  for (const char* ext : {".bounce.json", ".json", ".obj", ".gltf", ".glb"})
-    if (stem.size() > std::strlen(ext) && stem.ends_with(ext)) {
-      stem.resize(stem.size() - std::strlen(ext));
-      break;
-    }
-  for (char& c : stem)
-    if (c == ':') c = '-';
-  return "out/" + stem + "-reference.exr";
+  return "out/" + scene_stem(scene) + "-reference.exr";
 }
 
 // Progress on stderr: rewritten in place on a terminal, one line per tenth of the work otherwise.

@@ -21,15 +21,7 @@ struct RenderOptions {
 };
 
 std::string default_output(const std::string& scene) {
-  std::string stem = std::filesystem::path(scene).filename().string();
-  for (const char* ext : {".bounce.json", ".json", ".obj", ".gltf", ".glb"})
-    if (stem.size() > std::strlen(ext) && stem.ends_with(ext)) {
-      stem.resize(stem.size() - std::strlen(ext));
-      break;
-    }
-  for (char& c : stem)
-    if (c == ':') c = '-';
-  return "out/" + stem + ".png";
+  return "out/" + scene_stem(scene) + ".png";
 }
 
 // A still image affords more photons per pass than a real-time frame: unless told otherwise,

@@ -3,11 +3,25 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 
 #include "bounce/core/error.h"
 #include "bounce/render/technique.h"
 
 namespace bounce::app {
+
+std::string scene_stem(const std::string& scene) {
+  std::string stem = std::filesystem::path(scene).filename().string();
+  for (const char* ext : {".bounce.json", ".json", ".obj", ".gltf", ".glb"})
+    if (stem.size() > std::strlen(ext) && stem.ends_with(ext)) {
+      stem.resize(stem.size() - std::strlen(ext));
+      break;
+    }
+  for (char& c : stem)
+    if (c == ':') c = '-';
+  return stem;
+}
 
 FrameSettings FrameOptions::settings() const {
   FrameSettings s;

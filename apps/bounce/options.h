@@ -28,6 +28,9 @@ struct FrameOptions {
 
 // Adds [SCENE] and the frame options to a command.
 void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
+// A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
+std::string scene_stem(const std::string& scene);
+
 // Lists every technique's parameters with their defaults and ranges (for --help).
 std::string technique_parameters_help();
 // Creates the technique and applies --param assignments to it (throws Error on a bad one).

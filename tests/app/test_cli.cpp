@@ -1,41 +1,22 @@
 // The command-line program end to end: help, bad arguments, missing files, and real output.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "app/cli_test_util.h"
 #include "bounce/core/image_io.h"
 
+namespace bounce {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(BOUNCE_APP_PATH) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("bounce-cli-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using cli_test::Result;
+using cli_test::run;
+using cli_test::scratch_dir;
 
 TEST(Cli, EveryCommandHasHelp) {
   for (const char* command : {"", "render", "info", "bench"}) {
@@ -121,3 +102,4 @@ TEST(Cli, InfoAndBenchReportTheScene) {
 }
 
 }  // namespace
+}  // namespace bounce
