@@ -9,6 +9,7 @@ packages=(
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-matplotlib
 )
 
 missing=()
