@@ -63,10 +63,13 @@ inline LightSample sample_sphere_light(const Light& light, vec3 p, vec2 u) {
   return s;
 }
 
-// Area light made of emissive triangles: u.x picks a triangle by area (and is reused inside
-// it, which keeps stratification), then a uniform point on it. One-sided emission.
-inline LightSample sample_area_light(const Scene& scene, const AreaLight& light, vec3 p, vec2 u) {
-  LightSample s;
+// A uniform point on an area light: u.x picks a triangle by area (and is reused inside it, which
+// keeps stratification), then a uniform point on that triangle. Also its front-face normal.
+struct AreaLightPoint {
+  vec3 position;
+  vec3 normal;
+};
+inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLight& light, vec2 u) {
   const auto it = std::lower_bound(light.cdf.begin(), light.cdf.end(), u.x);
   const size_t k = std::min(size_t(it - light.cdf.begin()), light.cdf.size() - 1);
   const float lo = k == 0 ? 0.0f : light.cdf[k - 1];
@@ -76,14 +79,21 @@ inline LightSample sample_area_light(const Scene& scene, const AreaLight& light,
   const Mesh& mesh = scene.meshes[ref.mesh];
   const uvec3 tri = mesh.triangles[ref.triangle];
   const vec2 b = sample_uniform_triangle(v);
-  const vec3 q = (1.0f - b.x - b.y) * mesh.positions[tri.x] + b.x * mesh.positions[tri.y] +
-                 b.y * mesh.positions[tri.z];
-  const vec3 to_light = q - p;
+  return {(1.0f - b.x - b.y) * mesh.positions[tri.x] + b.x * mesh.positions[tri.y] +
+              b.y * mesh.positions[tri.z],
+          light.normals[k]};
+}
+
+// Area light made of emissive triangles, sampled by area. One-sided emission.
+inline LightSample sample_area_light(const Scene& scene, const AreaLight& light, vec3 p, vec2 u) {
+  LightSample s;
+  const AreaLightPoint q = sample_area_light_point(scene, light, u);
+  const vec3 to_light = q.position - p;
   const float d2 = glm::dot(to_light, to_light);
   if (d2 <= 0.0f) return s;
   s.distance = std::sqrt(d2);
   s.wi = to_light / s.distance;
-  const float cos_light = -glm::dot(light.normals[k], s.wi);
+  const float cos_light = -glm::dot(q.normal, s.wi);
   if (cos_light <= 0.0f) return s;  // behind the emitting face
   s.pdf = d2 / (cos_light * light.area);
   s.weight = light.radiance / s.pdf;

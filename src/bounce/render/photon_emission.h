@@ -1,11 +1,11 @@
-// Where photon paths start: every light (point, spot, directional, sphere, emissive triangles)
-// as one list, chosen in proportion to power.
+// Where photon paths start: every light (point, spot, directional, sphere, emissive triangles),
+// chosen in proportion to power by the same LightPicker the path tracer uses.
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 #include "bounce/core/math.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/scene/scene.h"
 
 namespace bounce {
@@ -17,20 +17,13 @@ struct EmittedPhoton {
 };
 
 struct PhotonEmitters {
-  enum class Kind : uint8_t { kLight, kArea };
-  struct Entry {
-    Kind kind;
-    uint32_t index;  // into Scene::lights or Scene::area_lights
-    vec3 power;
-  };
-  std::vector<Entry> entries;
-  std::vector<float> cdf;  // by summed channel power; cdf.back() == 1
+  LightPicker picker;  // entries: Scene::lights, then Scene::area_lights
   vec3 total_power{0.0f};
   float scene_radius = 0.0f;  // covers the scene, for directional lights
   vec3 scene_centre{0.0f};
 
   static PhotonEmitters from(const Scene& scene);
-  bool empty() const { return entries.empty(); }
+  bool empty() const { return picker.empty(); }
 };
 
 // Emits path i of n: u (stratified over the paths) picks the light and the point on it, v (random)

@@ -7,7 +7,7 @@
 #include "bounce/render/bsdf_sampling.h"
 #include "bounce/render/light_pdf.h"
 #include "bounce/render/light_sampling.h"
-#include "bounce/techniques/path/light_picker.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/techniques/path/path_tracer.h"
 #include "path_test_util.h"
 

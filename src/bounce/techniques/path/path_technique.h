@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bounce/render/technique.h"
-#include "bounce/techniques/path/light_picker.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/techniques/path/path_tracer.h"
 
 namespace bounce {

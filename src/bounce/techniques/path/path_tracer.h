@@ -10,7 +10,7 @@
 #include "bounce/core/rng.h"
 #include "bounce/render/brdf.h"
 #include "bounce/scene/scene.h"
-#include "bounce/techniques/path/light_picker.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {

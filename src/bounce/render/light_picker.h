@@ -1,6 +1,6 @@
-// Which light a path vertex samples: one light per vertex, chosen with probability proportional
-// to its power, so that many lights cost one shadow ray. Built once per scene; the pick itself is
-// a plain function over plain arrays.
+// Choosing a light in proportion to its power: which light a path vertex samples (one per
+// vertex, so many lights cost one shadow ray) and which light a photon path leaves. Built once
+// per scene; the pick itself is a plain function over plain arrays.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +33,13 @@ struct LightPicker {
         lo = mid + 1;
     }
     return lo;
+  }
+  // Stretches u, which picked `entry`, back over [0, 1): the rest of the sample stays
+  // stratified when u is reused to place a point on the light.
+  float remap(uint32_t entry, float u) const {
+    const float lo = entry == 0 ? 0.0f : cdf[entry - 1];
+    const float span = cdf[entry] - lo;
+    return span > 0.0f ? glm::clamp((u - lo) / span, 0.0f, 0.99999994f) : 0.5f;
   }
   float light_pmf(uint32_t light) const { return empty() ? 0.0f : pmf[light]; }
   float area_light_pmf(uint32_t area_light) const {

@@ -1,4 +1,4 @@
-#include "bounce/techniques/path/light_picker.h"
+#include "bounce/render/light_picker.h"
 
 namespace bounce {
 
