@@ -8,9 +8,54 @@
 
 namespace bounce {
 
-Renderer::Renderer(const Scene& scene, const Tracer& tracer, std::unique_ptr<Technique> technique)
+Renderer::Renderer(const Scene& scene, Tracer& tracer, std::unique_ptr<Technique> technique)
     : scene_(scene), tracer_(tracer), technique_(std::move(technique)) {
   technique_->scene_changed(scene_, tracer_);
+}
+
+void Renderer::set_technique(std::unique_ptr<Technique> technique) {
+  technique_ = std::move(technique);
+  technique_->scene_changed(scene_, tracer_);
+}
+
+void Renderer::scene_changed(const SceneChange& change) {
+  pending_.merge(change);
+}
+
+void Renderer::update_scene() {
+  if (!pending_.any()) return;
+  if (pending_.geometry()) tracer_.update(scene_, pending_.moved_meshes);
+  technique_->scene_changed(scene_, tracer_);
+  direct_frames_ = 0;
+  pending_ = SceneChange{};
+}
+
+void Renderer::average_direct(const CameraRays& rays, const FrameSettings& settings) {
+  Image& direct = frame_.direct;
+  const CameraRays& a = rays;
+  const CameraRays& b = last_rays_;
+  const bool same = a.origin == b.origin && a.forward == b.forward && a.right == b.right &&
+                    a.up == b.up && a.width == b.width && a.height == b.height &&
+                    settings.light_samples == last_light_samples_;
+  last_rays_ = rays;
+  last_light_samples_ = settings.light_samples;
+  if (!settings.accumulate || !same || direct_frames_ == 0) {
+    direct_frames_ = settings.accumulate ? 1 : 0;
+    if (settings.accumulate) direct_sum_ = direct;
+    frame_.direct_frames = 1;
+    return;
+  }
+  ++direct_frames_;
+  const float inv = 1.0f / float(direct_frames_);
+  parallel_for(
+      direct.pixel_count(),
+      [&](size_t i) {
+        vec3& sum = direct_sum_.pixels()[i];
+        sum += direct.pixels()[i];
+        direct.pixels()[i] = sum * inv;
+      },
+      4096);
+  frame_.direct_frames = direct_frames_;
 }
 
 const Frame& Renderer::render(const Camera& camera, const FrameSettings& settings) {
@@ -20,6 +65,10 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     fail("light samples must be positive (got {})", settings.light_samples);
   Frame& f = frame_;
   f.times.clear();
+  {
+    ScopedStage stage(f.times, "scene");
+    update_scene();
+  }
   const int w = settings.width, h = settings.height;
   const CameraRays rays = CameraRays::from(camera, w, h);
   // Jittered frames walk a Halton (2, 3) pattern over the pixel, so their average is the
@@ -36,6 +85,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
     f.shadow_rays = compute_direct(scene_, tracer_, f.gbuffer, rays.origin, direct, f.direct);
+    average_direct(rays, settings);
   }
   const bool indirect = technique_->has_indirect();
   if (indirect) {

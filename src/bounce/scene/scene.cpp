@@ -95,7 +95,22 @@ void Scene::finalize() {
   if (triangle_count() == 0 && lights.empty()) fail("{}: the scene has no triangles", source);
 
   for (auto& l : lights) l.direction = glm::normalize(l.direction);
+  derive();
+  prepare_animation(*this);
 
+  if (!has_camera) {
+    camera = frame_bounds(bounds);
+    has_camera = true;
+  }
+  check_finite(*this, camera.position, "camera position");
+  check_finite(*this, camera.look_at, "camera target");
+  if (glm::length(camera.look_at - camera.position) < 1e-9f)
+    fail("{}: the camera looks at its own position", source);
+  if (!(camera.vfov_deg > 0.0f && camera.vfov_deg < 180.0f))
+    fail("{}: camera field of view {} is outside (0, 180) degrees", source, camera.vfov_deg);
+}
+
+void Scene::derive() {
   bounds = Bounds{};
   triangle_offsets.clear();
   uint32_t offset = 0;
@@ -133,20 +148,10 @@ void Scene::finalize() {
     for (auto& c : al.cdf) c /= al.area;
     al.cdf.back() = 1.0f;
   }
-
-  if (!has_camera) {
-    camera = frame_bounds(bounds);
-    has_camera = true;
-  }
-  check_finite(*this, camera.position, "camera position");
-  check_finite(*this, camera.look_at, "camera target");
-  if (glm::length(camera.look_at - camera.position) < 1e-9f)
-    fail("{}: the camera looks at its own position", source);
-  if (!(camera.vfov_deg > 0.0f && camera.vfov_deg < 180.0f))
-    fail("{}: camera field of view {} is outside (0, 180) degrees", source, camera.vfov_deg);
 }
 
 void Scene::append(Scene&& other, const mat4& m) {
+  animation.append(std::move(other.animation), uint32_t(meshes.size()), uint32_t(lights.size()), m);
   const uint32_t material_base = uint32_t(materials.size());
   const int texture_base = int(textures.size());
   for (auto& t : other.textures) textures.push_back(std::move(t));

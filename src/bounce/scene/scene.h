@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "bounce/scene/animation.h"
 #include "bounce/scene/bounds.h"
 #include "bounce/scene/camera.h"
 #include "bounce/scene/light.h"
@@ -40,6 +41,7 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   bool has_camera = false;  // false: finalize() frames the bounds from the front
+  Animation animation;      // keyframed meshes and lights, camera path (may be empty)
 
   // Derived by finalize().
   std::vector<AreaLight> area_lights;
@@ -49,6 +51,9 @@ struct Scene {
   // Checks every index, number and reference (throws Error naming `source` and the problem),
   // then derives bounds, area lights and, if there is none, a camera.
   void finalize();
+  // Re-derives bounds, triangle offsets and area lights from the current meshes and lights:
+  // after an edit or animate() (which calls it).
+  void derive();
   // Moves another scene's meshes, materials, textures and lights in, transformed by `m`.
   void append(Scene&& other, const mat4& m);
 

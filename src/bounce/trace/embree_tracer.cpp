@@ -2,10 +2,13 @@
 // rays go through rtcIntersect1/rtcOccluded1, every span of rays through Embree's stream API
 // (rtcIntersect1M, rtcOccluded1M, flagged coherent or not), which measured faster here than our
 // own 8-wide packets and than single rays (docs/benchmarks.md).
+// A scene with animated meshes is built two-level (Embree's low scene quality): static meshes
+// keep their own high-quality BVHs and animated ones are refitted when their vertices move.
 #include <embree3/rtcore.h>
 
 #include <atomic>
 #include <cmath>
+#include <vector>
 
 #include "bounce/core/error.h"
 #include "bounce/core/timer.h"
@@ -130,9 +133,15 @@ class EmbreeTracer final : public Tracer {
     Stopwatch watch;
     if (scene_) rtcReleaseScene(scene_);
     scene_ = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(scene_, to_embree(quality_));
+    std::vector<bool> animated(scene.meshes.size(), false);
+    for (const auto& am : scene.animation.meshes) animated[am.mesh] = true;
+    const bool dynamic = !scene.animation.meshes.empty();
+    if (dynamic) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(scene_, dynamic ? RTC_BUILD_QUALITY_LOW : to_embree(quality_));
+    vertex_counts_.assign(scene.meshes.size(), 0);
     for (unsigned id = 0; id < scene.meshes.size(); ++id)
-      if (!scene.meshes[id].triangles.empty()) attach(scene.meshes[id], id);
+      if (!scene.meshes[id].triangles.empty())
+        attach(scene.meshes[id], id, animated[id] ? RTC_BUILD_QUALITY_REFIT : to_embree(quality_));
     rtcCommitScene(scene_);
     const RTCError error = rtcGetDeviceError(device_);
     if (error != RTC_ERROR_NONE)
@@ -141,12 +150,39 @@ class EmbreeTracer final : public Tracer {
     build_ms_ = watch.elapsed_ms();
   }
 
+  void update(const Scene& scene, std::span<const uint32_t> moved_meshes) override {
+    for (uint32_t id : moved_meshes) {
+      const Mesh& mesh = scene.meshes.at(id);
+      if (id >= vertex_counts_.size() || vertex_counts_[id] != mesh.positions.size()) {
+        rebuild(scene);  // the topology changed: refitting cannot follow
+        return;
+      }
+      if (mesh.triangles.empty()) continue;
+      RTCGeometry geometry = rtcGetGeometry(scene_, id);
+      auto* vertices =
+          static_cast<float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+      copy_vertices(mesh, vertices);
+      rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+      rtcCommitGeometry(geometry);
+    }
+    rtcCommitScene(scene_);
+    const RTCError error = rtcGetDeviceError(device_);
+    if (error != RTC_ERROR_NONE)
+      fail("{}: embree failed to update the acceleration structure (error {})", scene.source,
+           int(error));
+  }
+
   TracerStats stats() const override { return {size_t(std::max<ssize_t>(0, memory_)), build_ms_}; }
 
  private:
-  void attach(const Mesh& mesh, unsigned id) {
+  static void copy_vertices(const Mesh& mesh, float* vertices) {
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+  }
+
+  void attach(const Mesh& mesh, unsigned id, RTCBuildQuality quality) {
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(geometry, to_embree(quality_));
+    rtcSetGeometryBuildQuality(geometry, quality);
     // Embree reads vertices with 16-byte loads, so its own buffers (padded) hold a copy.
     auto* vertices = static_cast<float*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -155,8 +191,8 @@ class EmbreeTracer final : public Tracer {
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                 3 * sizeof(uint32_t), mesh.triangles.size()));
     if (!vertices || !indices) fail("embree: out of memory for mesh '{}'", mesh.name);
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
-      for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+    copy_vertices(mesh, vertices);
+    vertex_counts_[id] = mesh.positions.size();
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
       for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
     rtcCommitGeometry(geometry);
@@ -172,6 +208,7 @@ class EmbreeTracer final : public Tracer {
   BuildQuality quality_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
+  std::vector<size_t> vertex_counts_;  // per mesh, as attached
   std::atomic<ssize_t> memory_{0};
   double build_ms_ = 0.0;
 };

@@ -46,6 +46,9 @@ class Tracer {
   virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> blocked) const = 0;
   // Rebuilds after the scene's geometry changed.
   virtual void rebuild(const Scene& scene) = 0;
+  // Catches up with meshes whose vertices moved (same vertex and triangle counts): the
+  // implementation refits their part of the acceleration structure where it can.
+  virtual void update(const Scene& scene, std::span<const uint32_t> moved_meshes) = 0;
   virtual TracerStats stats() const = 0;
 };
 

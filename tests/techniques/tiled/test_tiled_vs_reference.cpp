@@ -12,7 +12,7 @@ namespace {
 
 constexpr int kSize = 32;
 
-Image tiled_image(const Scene& scene, const Tracer& tracer, int passes, int photons) {
+Image tiled_image(const Scene& scene, Tracer& tracer, int passes, int photons) {
   auto technique = std::make_unique<TiledPhotonMapping>();
   technique->settings().photons = photons;
   technique->settings().lowres = 1;
