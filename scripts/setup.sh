@@ -10,6 +10,8 @@ packages=(
   libopenexr-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
+  libglfw3-dev libimgui-dev libepoxy-dev
+  xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
 
 missing=()

@@ -4,6 +4,17 @@
 
 namespace bounce {
 
+vec3& Light::emission() {
+  switch (type) {
+    case LightType::kDirectional:
+      return irradiance;
+    case LightType::kSphere:
+      return radiance;
+    default:
+      return intensity;
+  }
+}
+
 Light Light::point(vec3 position, vec3 intensity) {
   Light l;
   l.type = LightType::kPoint;

@@ -30,6 +30,10 @@ struct Light {
   // Radiant power in W per channel. A directional light's power depends on the area it lights:
   // scene_radius is the radius of a disk that covers the scene.
   vec3 power(float scene_radius) const;
+  // The colour that sets this light's brightness: intensity (point, spot), irradiance
+  // (directional) or radiance (sphere).
+  vec3& emission();
+  const vec3& emission() const { return const_cast<Light*>(this)->emission(); }
   const char* type_name() const;
 };
 

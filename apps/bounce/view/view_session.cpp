@@ -1,0 +1,212 @@
+#include "view_session.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bounce/core/error.h"
+#include "bounce/render/technique.h"
+#include "bounce/scene/load.h"
+
+namespace bounce::app {
+
+namespace {
+
+constexpr size_t kHistory = 240;  // frames in the frame-time graph
+
+bool same_camera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.look_at == b.look_at && a.up == b.up &&
+         a.vfov_deg == b.vfov_deg;
+}
+
+vec3 vector_arg(const ScriptAction& a, size_t first) {
+  return {a.number(first), a.number(first + 1), a.number(first + 2)};
+}
+
+}  // namespace
+
+ViewSession::ViewSession(const ViewOptions& options)
+    : options_(options), scene_(load_scene(options.frame.scene)) {
+  scaler_.settings().target_ms = options.target_ms;
+  tracer_ = make_embree_tracer(scene_);
+  renderer_ =
+      std::make_unique<Renderer>(scene_, *tracer_, make_configured_technique(options.frame));
+  technique_name_ = options.frame.technique;
+  exposure_ = options.frame.exposure_ev;
+  camera_ = FlyCamera(scene_.camera);
+  playing_ = !scene_.animation.empty();
+}
+
+void ViewSession::reset_camera() {
+  camera_ = FlyCamera(scene_.camera);
+}
+
+void ViewSession::set_technique(const std::string& name) {
+  if (name == technique_name_) return;
+  renderer_->set_technique(make_technique(name));  // throws Error for an unknown name
+  technique_name_ = name;
+  settings_changed_ = true;
+}
+
+void ViewSession::set_param(const std::string& name, const std::string& value) {
+  try {
+    renderer_->technique().params().set(name, value);
+  } catch (const Error& e) {
+    fail("technique '{}': {}", technique_name_, e.what());
+  }
+  settings_changed_ = true;
+}
+
+void ViewSession::lights_changed() {
+  pending_.lights = true;
+}
+
+void ViewSession::materials_changed() {
+  pending_.materials = true;
+  pending_.lights = true;
+  scene_.derive();  // emission may have turned a material into a light or back
+}
+
+void ViewSession::translate_mesh(uint32_t mesh, vec3 offset) {
+  Mesh& m = scene_.meshes.at(mesh);
+  for (vec3& p : m.positions) p += offset;
+  // An animated mesh's rest copy moves too, or the next pose would undo the edit.
+  for (AnimatedMesh& am : scene_.animation.meshes)
+    if (am.mesh == mesh)
+      for (vec3& p : am.rest_positions) p += offset;
+  scene_.derive();
+  pending_.merge(SceneChange{{mesh}, true, false});
+}
+
+void ViewSession::set_time(float t) {
+  time_ = std::max(t, 0.0f);
+  time_set_ = true;
+}
+
+void ViewSession::set_flashlight(bool on) {
+  if (on == flashlight()) return;
+  if (on) {
+    flashlight_index_ = scene_.lights.size();
+    scene_.lights.push_back(make_flashlight(camera_.camera(), flashlight_settings_));
+  } else {
+    scene_.lights.erase(scene_.lights.begin() + std::ptrdiff_t(*flashlight_index_));
+    flashlight_index_.reset();
+  }
+  lights_changed();
+}
+
+void ViewSession::place_flashlight() {
+  if (!flashlight_index_) return;
+  const Light l = make_flashlight(camera_.camera(), flashlight_settings_);
+  Light& current = scene_.lights[*flashlight_index_];
+  if (current.position != l.position || current.direction != l.direction ||
+      current.intensity != l.intensity || current.cos_inner != l.cos_inner ||
+      current.cos_outer != l.cos_outer) {
+    current = l;
+    lights_changed();
+  }
+}
+
+const Frame& ViewSession::render(int out_w, int out_h, double dt) {
+  // Scene update: the animation clock, the camera path, the flashlight.
+  if (playing_ && !scene_.animation.empty()) {
+    time_ += float(dt);
+    time_set_ = true;
+  }
+  if (time_set_) {
+    pending_.merge(animate(scene_, time_));
+    time_set_ = false;
+  }
+  if (follow_path_ && !scene_.animation.camera_path.empty()) {
+    const float d = scene_.animation.duration();
+    const float t = scene_.animation.loop && d > 0.0f ? std::fmod(time_, d) : time_;
+    camera_ = FlyCamera(scene_.animation.camera_path.at(scene_.camera, t));
+  }
+  place_flashlight();
+  const Camera camera = camera_.camera();
+
+  moving_ =
+      first_frame_ || !same_camera(camera, last_camera_) || pending_.any() || settings_changed_;
+  first_frame_ = false;
+  last_camera_ = camera;
+  settings_changed_ = false;
+  if (pending_.any()) renderer_->scene_changed(pending_);
+  pending_ = SceneChange{};
+
+  const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
+  FrameSettings settings = options_.frame.settings();
+  settings.width = std::max(1, int(std::lround(out_w * scale)));
+  settings.height = std::max(1, int(std::lround(out_h * scale)));
+  settings.exposure_ev = exposure_;
+  settings.accumulate = true;
+  settings.jitter = !moving_;  // at rest, jittered frames average into an antialiased image
+  frame_ = &renderer_->render(camera, settings);
+
+  last_frame_ms_ = frame_->times.total_ms();
+  history_.push_back(float(last_frame_ms_));
+  if (history_.size() > kHistory) history_.pop_front();
+  ++frames_;
+  return *frame_;
+}
+
+bool ViewSession::apply(const ScriptAction& a) {
+  if (a.verb == "move") {
+    camera_.move(vector_arg(a, 0));
+  } else if (a.verb == "turn") {
+    camera_.turn(a.number(0), a.number(1));
+  } else if (a.verb == "camera") {
+    Camera c = camera_.camera();
+    c.position = vector_arg(a, 0);
+    c.look_at = vector_arg(a, 3);
+    if (glm::length(c.look_at - c.position) <= 0.0f)
+      fail("{}: camera: the target equals the position", a.where());
+    camera_ = FlyCamera(c);
+  } else if (a.verb == "flashlight") {
+    set_flashlight(a.args[0] == "toggle" ? !flashlight() : a.on_off(0));
+  } else if (a.verb == "technique") {
+    try {
+      set_technique(a.args[0]);
+    } catch (const Error& e) {
+      fail("{}: {}", a.where(), e.what());
+    }
+  } else if (a.verb == "param") {
+    try {
+      set_param(a.args[0], a.args[1]);
+    } catch (const Error& e) {
+      fail("{}: {}", a.where(), e.what());
+    }
+  } else if (a.verb == "light") {
+    const int i = a.integer(0);
+    if (size_t(i) >= scene_.lights.size())
+      fail(
+          "{}: light {} does not exist (the scene has {} point, spot, directional or sphere "
+          "lights)",
+          a.where(), i, scene_.lights.size());
+    Light& l = scene_.lights[size_t(i)];
+    const vec3 v = vector_arg(a, 2);
+    if (a.args[1] == "position") {
+      l.position = v;
+    } else {
+      if (glm::any(glm::lessThan(v, vec3(0.0f))))
+        fail("{}: light: a colour must not be negative", a.where());
+      l.emission() = v;
+    }
+    lights_changed();
+  } else if (a.verb == "exposure") {
+    exposure_ = a.number(0);
+  } else if (a.verb == "play") {
+    playing_ = a.on_off(0);
+  } else if (a.verb == "time") {
+    set_time(a.number(0));
+  } else if (a.verb == "path") {
+    follow_path_ = a.on_off(0);
+  } else if (a.verb == "scale") {
+    const float s = a.number(0);
+    if (!(s > 0.0f && s <= 1.0f)) fail("{}: scale must be in (0, 1], got {}", a.where(), s);
+    fixed_scale_ = s;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace bounce::app

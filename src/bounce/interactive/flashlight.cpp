@@ -1,0 +1,17 @@
+#include "bounce/interactive/flashlight.h"
+
+namespace bounce {
+
+Light make_flashlight(const Camera& camera, const FlashlightSettings& s) {
+  const vec3 forward = glm::normalize(camera.look_at - camera.position);
+  vec3 right = glm::cross(forward, camera.up);
+  right = glm::length(right) > 1e-6f ? glm::normalize(right) : vec3(1.0f, 0.0f, 0.0f);
+  const vec3 up = glm::cross(right, forward);
+  const vec3 position =
+      camera.position + s.offset.x * right + s.offset.y * up + s.offset.z * forward;
+  Light l = Light::spot(position, forward, s.intensity, s.inner_deg, s.outer_deg);
+  l.name = "flashlight";
+  return l;
+}
+
+}  // namespace bounce
