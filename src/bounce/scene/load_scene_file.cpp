@@ -1,4 +1,5 @@
-// The JSON scene file (*.bounce.json): models placed by transforms, lights and a camera.
+// The JSON scene file (*.bounce.json): models placed by transforms, lights, a camera and
+// keyframed animation of models, lights and the camera.
 // The format is documented in docs/scene-format.md. The reader is strict: unknown keys, wrong
 // types, wrong array lengths, missing fields and non-finite numbers are errors naming the key
 // and where it is, so that a typo cannot silently change the scene.
@@ -59,6 +60,13 @@ class Object {
   // A colour or scale: [x, y, z], or one number for all three.
   vec3 triple(const char* key) const { return to_vec3(at(key), key, true); }
   vec3 triple_or(const char* key, vec3 fallback) const { return has(key) ? triple(key) : fallback; }
+
+  bool boolean(const char* key) const {
+    const json& v = at(key);
+    if (!v.is_boolean())
+      fail("{}: {}: '{}' must be true or false, found {}", file_, where_, key, v.type_name());
+    return v.get<bool>();
+  }
 
   const std::string& where() const { return where_; }
 
@@ -127,6 +135,147 @@ mat4 model_transform(const Object& o, const std::string& file) {
   return glm::scale(m, s);
 }
 
+vec3 non_zero_direction(const Object& o, const std::string& file);
+
+// The rotation of model_transform (Rz * Ry * Rx, degrees) as a quaternion.
+quat euler_quat(vec3 degrees) {
+  return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
+         glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
+         glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
+}
+
+// The shortest rotation turning unit vector a into unit vector b.
+quat turn(vec3 a, vec3 b) {
+  const float c = glm::dot(a, b);
+  if (c < -1.0f + 1e-6f) {  // opposite: half a turn about any axis perpendicular to a
+    vec3 axis = glm::cross(vec3(1, 0, 0), a);
+    if (glm::length(axis) < 1e-3f) axis = glm::cross(vec3(0, 1, 0), a);
+    return glm::angleAxis(kPi, glm::normalize(axis));
+  }
+  const vec3 axis = glm::cross(a, b);
+  return glm::normalize(quat(1.0f + c, axis.x, axis.y, axis.z));
+}
+
+// The "keys" array and "interpolation" of an animation object: the keys' objects (checked for
+// allowed keys), their times (finite, >= 0, strictly increasing) and whether they step.
+struct KeyList {
+  std::vector<Object> keys;
+  std::vector<float> times;
+  bool step = false;
+};
+
+KeyList parse_keys(const json& j, const std::string& file, const std::string& where,
+                   std::initializer_list<std::string_view> anim_keys,
+                   std::initializer_list<std::string_view> key_keys) {
+  const Object o(j, file, where, anim_keys);
+  KeyList out;
+  if (o.has("interpolation")) {
+    const std::string mode = o.string("interpolation");
+    if (mode != "linear" && mode != "step")
+      fail("{}: {}: 'interpolation' must be \"linear\" or \"step\", found \"{}\"", file, where,
+           mode);
+    out.step = mode == "step";
+  }
+  const json& keys = o.at("keys");
+  if (!keys.is_array())
+    fail("{}: {}: 'keys' must be an array, found {}", file, where, keys.type_name());
+  if (keys.empty()) fail("{}: {}: 'keys' needs at least one key", file, where);
+  out.keys.reserve(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    out.keys.emplace_back(keys[k], file, fmt::format("{}.keys[{}]", where, k), key_keys);
+    const Object& key = out.keys.back();
+    const double time = key.number("time");
+    if (time < 0.0) fail("{}: {}: 'time' must not be negative, found {}", file, key.where(), time);
+    if (k > 0 && !(float(time) > out.times.back()))
+      fail("{}: {}: 'time' must be greater than the previous key's ({} s), found {} s", file,
+           key.where(), out.times.back(), time);
+    out.times.push_back(float(time));
+  }
+  return out;
+}
+
+template <typename T>
+void add_key(Keyframes<T>& k, float time, const T& value, bool step) {
+  k.times.push_back(time);
+  k.values.push_back(value);
+  k.step = step;
+}
+
+// A model's "animation": a track that moves the model from its static transform `rest`.
+TrsTrack parse_model_animation(const Object& model, const std::string& file, const mat4& rest) {
+  const std::string where = model.where() + ".animation";
+  const KeyList list = parse_keys(model.at("animation"), file, where, {"keys", "interpolation"},
+                                  {"time", "translate", "rotate", "scale"});
+  const vec3 static_scale = model.triple_or("scale", vec3(1.0f));
+  const bool static_mirrors = static_scale.x * static_scale.y * static_scale.z < 0.0f;
+  TrsTrack track;
+  track.name = model.where();
+  track.rest = rest;
+  for (size_t k = 0; k < list.keys.size(); ++k) {
+    const Object& key = list.keys[k];
+    const float t = list.times[k];
+    if (!key.has("translate") && !key.has("rotate") && !key.has("scale"))
+      fail("{}: {}: a key needs at least one of 'translate', 'rotate' and 'scale'", file,
+           key.where());
+    if (key.has("translate")) add_key(track.translation, t, key.vector("translate"), list.step);
+    if (key.has("rotate")) add_key(track.rotation, t, euler_quat(key.vector("rotate")), list.step);
+    if (key.has("scale")) {
+      const vec3 s = key.triple("scale");
+      if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f)
+        fail("{}: {}: 'scale' must not be zero", file, key.where());
+      if ((s.x * s.y * s.z < 0.0f) != static_mirrors)
+        fail("{}: {}: 'scale' must mirror exactly when the model's static 'scale' does", file,
+             key.where());
+      add_key(track.scale, t, s, list.step);
+    }
+  }
+  // Channels without keys hold the static transform's values, given exactly (rather than
+  // decomposed from `rest`, which cannot tell a mirroring scale from a rotation).
+  const float t0 = list.times.front();
+  if (track.translation.empty())
+    add_key(track.translation, t0, model.vector_or("translate", vec3(0.0f)), list.step);
+  if (track.rotation.empty())
+    add_key(track.rotation, t0, euler_quat(model.vector_or("rotate", vec3(0.0f))), list.step);
+  if (track.scale.empty()) add_key(track.scale, t0, static_scale, list.step);
+  return track;
+}
+
+// A light's "animation": keyed positions (and directions for spot and directional lights) as a
+// track whose rest is the light's static position, so that its delta carries the rest position
+// onto the keyed one and turns the rest direction into the keyed one.
+TrsTrack parse_light_animation(const Object& o, const Light& light, const std::string& file) {
+  const std::string where = o.where() + ".animation";
+  const bool has_position = light.type != LightType::kDirectional;
+  const bool has_direction =
+      light.type == LightType::kSpot || light.type == LightType::kDirectional;
+  static const std::initializer_list<std::string_view> kPositioned = {"time", "position"};
+  static const std::initializer_list<std::string_view> kAimed = {"time", "position", "direction"};
+  static const std::initializer_list<std::string_view> kDirected = {"time", "direction"};
+  const KeyList list = parse_keys(o.at("animation"), file, where, {"keys", "interpolation"},
+                                  !has_direction ? kPositioned
+                                  : has_position ? kAimed
+                                                 : kDirected);
+  TrsTrack track;
+  track.name = o.where();
+  track.rest = glm::translate(mat4(1.0f), light.position);
+  const vec3 rest_direction = glm::normalize(light.direction);
+  for (size_t k = 0; k < list.keys.size(); ++k) {
+    const Object& key = list.keys[k];
+    const float t = list.times[k];
+    if (!key.has("position") && !key.has("direction"))
+      fail("{}: {}: a key needs '{}'", file, key.where(),
+           has_position && has_direction ? "position' or 'direction"
+           : has_position                ? "position"
+                                         : "direction");
+    if (key.has("position")) add_key(track.translation, t, key.vector("position"), list.step);
+    if (key.has("direction")) {
+      const vec3 d = non_zero_direction(key, file);
+      add_key(track.rotation, t, turn(rest_direction, glm::normalize(d)), list.step);
+    }
+  }
+  return track;
+}
+
 // Loads one entry of "models" (a file or a built-in scene), not yet transformed.
 Scene load_model(const Object& o, const std::string& file, const fs::path& dir) {
   if (o.has("file") == o.has("builtin"))
@@ -158,13 +307,13 @@ Scene load_model(const Object& o, const std::string& file, const fs::path& dir) 
 // The keys each light type may have; any other key (say "colour" for "intensity") is an error.
 std::initializer_list<std::string_view> light_keys(const std::string& type) {
   static const std::initializer_list<std::string_view> kPoint = {"type", "name", "position",
-                                                                 "intensity"};
+                                                                 "intensity", "animation"};
   static const std::initializer_list<std::string_view> kSpot = {
-      "type", "name", "position", "direction", "intensity", "inner_deg", "outer_deg"};
+      "type", "name", "position", "direction", "intensity", "inner_deg", "outer_deg", "animation"};
   static const std::initializer_list<std::string_view> kDirectional = {"type", "name", "direction",
-                                                                       "irradiance"};
-  static const std::initializer_list<std::string_view> kSphere = {"type", "name", "position",
-                                                                  "radius", "radiance"};
+                                                                       "irradiance", "animation"};
+  static const std::initializer_list<std::string_view> kSphere = {
+      "type", "name", "position", "radius", "radiance", "animation"};
   if (type == "point") return kPoint;
   if (type == "spot") return kSpot;
   if (type == "directional") return kDirectional;
@@ -184,7 +333,9 @@ vec3 non_negative(const Object& o, const char* key, const std::string& file) {
   return v;
 }
 
-Light parse_light(const json& j, const std::string& file, const std::string& where) {
+// Parses one light; a light with an "animation" also gets its track into `track`.
+Light parse_light(const json& j, const std::string& file, const std::string& where, TrsTrack* track,
+                  bool* animated) {
   if (!j.is_object()) fail("{}: {}: expected an object, found {}", file, where, j.type_name());
   if (!j.contains("type")) fail("{}: {}: missing required key 'type'", file, where);
   if (!j.at("type").is_string()) fail("{}: {}: 'type' must be a string", file, where);
@@ -211,6 +362,8 @@ Light parse_light(const json& j, const std::string& file, const std::string& whe
     light = Light::sphere(o.vector("position"), radius, non_negative(o, "radiance", file));
   }
   light.name = o.has("name") ? o.string("name") : where;
+  *animated = o.has("animation");
+  if (*animated) *track = parse_light_animation(o, light, file);
   return light;
 }
 
@@ -246,7 +399,7 @@ Scene load_scene_file(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   const json root = parse_json(text.str(), path);
-  const Object top(root, path, "top level", {"models", "lights", "camera"});
+  const Object top(root, path, "top level", {"models", "lights", "camera", "camera_path", "loop"});
   const fs::path dir = fs::path(path).parent_path();
 
   Scene scene;
@@ -255,8 +408,11 @@ Scene load_scene_file(const std::string& path) {
   const json& models = array_or_empty(top, "models", path);
   for (size_t i = 0; i < models.size(); ++i) {
     const Object o(models[i], path, fmt::format("models[{}]", i),
-                   {"file", "builtin", "translate", "rotate", "scale"});
+                   {"file", "builtin", "translate", "rotate", "scale", "animation"});
     const mat4 m = model_transform(o, path);
+    const bool animated = o.has("animation");
+    TrsTrack track;
+    if (animated) track = parse_model_animation(o, path, m);
     Scene model = load_model(o, path, dir);
     // Without a camera of its own the file takes the first model's camera, moved with it.
     if (!camera_from_model && model.has_camera) {
@@ -267,17 +423,75 @@ Scene load_scene_file(const std::string& path) {
       scene.camera.vfov_deg = model.camera.vfov_deg;
       scene.has_camera = true;
     }
+    const uint32_t mesh_base = uint32_t(scene.meshes.size());
+    const uint32_t light_base = uint32_t(scene.lights.size());
+    const size_t animated_mesh_base = scene.animation.meshes.size();
+    const size_t animated_light_base = scene.animation.lights.size();
     scene.append(std::move(model), m);
+    if (animated) {
+      // The model's track is outermost: it goes first in the track lists of all its meshes and
+      // lights, before the tracks the model brought (a glTF file's node animations).
+      Animation& a = scene.animation;
+      const uint32_t k = uint32_t(a.tracks.size());
+      a.tracks.push_back(std::move(track));
+      std::vector<char> mesh_done(scene.meshes.size() - mesh_base, 0);
+      for (size_t e = animated_mesh_base; e < a.meshes.size(); ++e) {
+        a.meshes[e].tracks.insert(a.meshes[e].tracks.begin(), k);
+        const uint32_t mi = a.meshes[e].mesh - mesh_base;  // checked by prepare_animation
+        if (a.meshes[e].mesh >= mesh_base && mi < mesh_done.size()) mesh_done[mi] = 1;
+      }
+      for (uint32_t mi = mesh_base; mi < scene.meshes.size(); ++mi)
+        if (!mesh_done[mi - mesh_base]) a.meshes.push_back(AnimatedMesh{mi, {k}, {}, {}});
+      std::vector<char> light_done(scene.lights.size() - light_base, 0);
+      for (size_t e = animated_light_base; e < a.lights.size(); ++e) {
+        a.lights[e].tracks.insert(a.lights[e].tracks.begin(), k);
+        const uint32_t li = a.lights[e].light - light_base;
+        if (a.lights[e].light >= light_base && li < light_done.size()) light_done[li] = 1;
+      }
+      for (uint32_t li = light_base; li < scene.lights.size(); ++li) {
+        if (light_done[li - light_base]) continue;
+        AnimatedLight al;
+        al.light = li;
+        al.tracks = {k};
+        a.lights.push_back(std::move(al));
+      }
+    }
   }
   const json& lights = array_or_empty(top, "lights", path);
   for (size_t i = 0; i < lights.size(); ++i) {
-    scene.lights.push_back(parse_light(lights[i], path, fmt::format("lights[{}]", i)));
+    TrsTrack track;
+    bool animated = false;
+    scene.lights.push_back(
+        parse_light(lights[i], path, fmt::format("lights[{}]", i), &track, &animated));
+    if (animated) {
+      AnimatedLight al;
+      al.light = uint32_t(scene.lights.size() - 1);
+      al.tracks = {uint32_t(scene.animation.tracks.size())};
+      scene.animation.tracks.push_back(std::move(track));
+      scene.animation.lights.push_back(std::move(al));
+    }
   }
   if (top.has("camera")) {
     scene.camera = parse_camera(
         Object(top.at("camera"), path, "camera", {"position", "look_at", "up", "fov_deg"}), path);
     scene.has_camera = true;
   }
+  if (top.has("camera_path")) {
+    const KeyList list = parse_keys(top.at("camera_path"), path, "camera_path",
+                                    {"keys", "interpolation"}, {"time", "position", "look_at"});
+    CameraPath& cp = scene.animation.camera_path;
+    cp = CameraPath{};
+    for (size_t k = 0; k < list.keys.size(); ++k) {
+      const Object& key = list.keys[k];
+      const vec3 position = key.vector("position");
+      const vec3 look_at = key.vector("look_at");
+      if (!(glm::length(look_at - position) > 0.0f))
+        fail("{}: {}: 'look_at' equals 'position'", path, key.where());
+      add_key(cp.position, list.times[k], position, list.step);
+      add_key(cp.look_at, list.times[k], look_at, list.step);
+    }
+  }
+  scene.animation.loop = top.has("loop") ? top.boolean("loop") : true;
   return scene;
 }
 
