@@ -112,6 +112,7 @@ def mean_abs_diff(a, b):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--bounce", required=True)
+    parser.add_argument("--source", required=True, help="the repository (for scenes/)")
     args = parser.parse_args()
     out = tempfile.mkdtemp(prefix="bounce-view-")
     xvfb, display = start_xvfb()
@@ -168,6 +169,35 @@ screenshot {shot('panel')}
             fail("after switching back, the view differs from before the flashlight")
         print("headless_view: screenshots " + ", ".join(
             f"{n} mean {i.mean():.3f}" for n, i in images.items()))
+
+        # A dynamic scene: the animation moves the cube and the light between frames, and the
+        # camera path moves the view.
+        dyn_script = os.path.join(out, "dynamic.txt")
+        with open(dyn_script, "w") as f:
+            f.write(f"""ui off
+wait 2
+screenshot {shot('anim_a')}
+wait 20
+screenshot {shot('anim_b')}
+play off
+path on
+time 2
+wait 2
+screenshot {shot('path')}
+""")
+        scene = os.path.join(args.source, "scenes", "dynamic-cornell.bounce.json")
+        run = subprocess.run(
+            [args.bounce, "view", scene, "--script", dyn_script, "-W", str(W), "-H", str(H),
+             "--target-ms", "0"], env=env, capture_output=True, text=True, timeout=240)
+        if run.returncode != 0:
+            fail(f"bounce view {scene} exited with {run.returncode}: {run.stderr.strip()}")
+        dyn = {n: Shot(shot(n)) for n in ("anim_a", "anim_b", "path")}
+        for name, image in dyn.items():
+            check_not_blank(name, image)
+        for a, b in (("anim_a", "anim_b"), ("anim_b", "path")):
+            d = mean_abs_diff(dyn[a], dyn[b])
+            if d < 0.005:
+                fail(f"{a} and {b} are nearly identical (mean difference {d:.4f})")
 
         # Errors: a bad script line names the file and line; no display is a clear error.
         bad = os.path.join(out, "bad.txt")

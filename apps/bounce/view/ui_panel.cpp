@@ -64,7 +64,7 @@ void timing_section(const ViewSession& session) {
   for (float v : values) peak = std::max(peak, v);
   const std::string overlay = fmt::format("{:.1f} ms", f.times.total_ms());
   ImGui::PlotLines("##frame", values.data(), int(values.size()), 0, overlay.c_str(), 0.0f,
-                   peak * 1.1f, ImVec2(-1.0f, 60.0f));
+                   peak * 1.1f, ImVec2(ImGui::GetContentRegionAvail().x, 60.0f));
   if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_RowBg)) {
     for (const StageTime& s : f.times.stages()) {
       ImGui::TableNextRow();
@@ -130,7 +130,8 @@ void lights_section(ViewSession& session) {
 
 void draw_panel(ViewSession& session, PanelState& state) {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
   ImGui::Begin("bounce");
   const Frame& f = session.frame();
   const Scene& scene = session.scene();
@@ -139,6 +140,7 @@ void draw_panel(ViewSession& session, PanelState& state) {
               session.moving() ? "moving" : "at rest");
   ImGui::Text("direct light: %d frame(s) averaged", f.direct_frames);
 
+  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) timing_section(session);
   if (ImGui::CollapsingHeader("technique", ImGuiTreeNodeFlags_DefaultOpen)) {
     try {
       technique_section(session);
@@ -146,7 +148,6 @@ void draw_panel(ViewSession& session, PanelState& state) {
       ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.what());
     }
   }
-  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) timing_section(session);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("exposure", &session.exposure(), -8.0f, 8.0f, "%.1f EV");
     float target = float(session.scaler().settings().target_ms);
