@@ -1,5 +1,6 @@
 #include "bench_json.h"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "bounce/core/image_io.h"
@@ -12,6 +13,48 @@ namespace {
 // Events per second over a total time in ms; null when nothing was timed.
 nlohmann::json per_second(double count, double ms) {
   return ms > 0.0 ? nlohmann::json(count / (ms * 1e-3)) : nlohmann::json();
+}
+
+// A number, or null when it is not finite (JSON has no NaN or infinity).
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
+nlohmann::json flicker_json(const TemporalRecord* t) {
+  if (!t || t->flicker_frames <= 0) return nullptr;
+  return {{"width", t->width},
+          {"height", t->height},
+          {"frames", t->flicker_frames},
+          {"warmup_frames", t->flicker_warmup},
+          {"at_rest", finite_or_null(t->flicker_at_rest)},
+          {"accumulation_off", finite_or_null(t->flicker_accumulation_off)},
+          {"params_turned_off", t->accumulation_params}};
+}
+
+nlohmann::json settle_json(const TemporalRecord* t) {
+  using nlohmann::json;
+  if (!t || !t->settle) return nullptr;
+  const SettleOptions& o = t->settle_options;
+  const SettleResult& r = t->settle_result;
+  json errors = json::array();
+  for (const double e : r.errors) errors.push_back(finite_or_null(e));
+  const bool settled = r.applicable && r.settle_frame != kNotSettled;
+  return {{"width", t->width},
+          {"height", t->height},
+          {"applicable", r.applicable},
+          {"reason", r.reason},
+          {"frames", settled ? json(r.settle_frame) : json()},
+          {"settled", settled},
+          {"max_frames", o.frames},
+          {"rest_frames", o.rest_frames},
+          {"target_frames", o.target_frames},
+          {"tolerance", o.tolerance},
+          {"block", o.block},
+          {"light", r.light},
+          {"offset", {r.offset.x, r.offset.y, r.offset.z}},
+          {"move_fraction", o.move_fraction},
+          {"change", r.applicable ? finite_or_null(r.change) : json()},
+          {"errors", errors}};
 }
 
 }  // namespace
@@ -67,6 +110,8 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
         {"stored_per_frame", r.photons_stored / frames},
         // Photon paths over the whole indirect stage's time (tracing plus estimation).
         {"paths_per_s", per_second(r.photon_paths, r.indirect_ms)}}},
+      {"flicker", flicker_json(r.temporal)},
+      {"settle", settle_json(r.temporal)},
   };
   save_text_file(path, record.dump(2) + "\n");
 }

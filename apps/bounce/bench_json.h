@@ -6,9 +6,22 @@
 #include <vector>
 
 #include "bounce/core/timer.h"
+#include "bounce/metrics/temporal_runs.h"
 #include "bounce/render/renderer.h"
 
 namespace bounce::app {
+
+// bench --flicker / --settle (bounce/metrics/temporal_runs.h).
+struct TemporalRecord {
+  int width = 0, height = 0;  // the size the temporal runs rendered at
+  int flicker_frames = 0;     // 0: flicker not measured
+  int flicker_warmup = 0;
+  double flicker_at_rest = 0.0, flicker_accumulation_off = 0.0;
+  std::vector<std::string> accumulation_params;  // technique bools turned off for the second
+  bool settle = false;                           // false: settle not measured
+  SettleOptions settle_options;
+  SettleResult settle_result;
+};
 
 struct BenchRecord {
   std::string scene;
@@ -23,6 +36,7 @@ struct BenchRecord {
   double primary_rays = 0.0, shadow_rays = 0.0, technique_rays = 0.0;
   double photon_paths = 0.0, photons_stored = 0.0;
   double gbuffer_ms = 0.0, direct_ms = 0.0, indirect_ms = 0.0;
+  const TemporalRecord* temporal = nullptr;  // "flicker" and "settle" (null when not measured)
 };
 
 // Writes the record as JSON to `path`, atomically (a temporary file renamed over the target).

@@ -1,10 +1,12 @@
-// bounce bench: many frames of a scene; mean and standard deviation per stage after warm-up.
+// bounce bench: many frames of a scene; mean and standard deviation per stage after warm-up;
+// --flicker and --settle add the temporal metrics (bounce/metrics/temporal_runs.h).
 #include <fmt/format.h>
 
 #include <thread>
 
 #include "bench_json.h"
 #include "bounce/core/parallel.h"
+#include "bounce/metrics/temporal_runs.h"
 #include "bounce/scene/load.h"
 #include "options.h"
 #include "report.h"
@@ -20,7 +22,67 @@ struct BenchOptions {
   int frames = 100;
   int warmup = 10;
   std::string json;  // --json: also write a machine-readable record here
+  // Temporal metrics (temporal_runs.h), at kTemporalSize unless -W/-H were given.
+  int flicker = 0;  // frames measured for flicker; 0: off
+  bool settle = false;
+  SettleOptions settle_options;
+  bool width_given = false, height_given = false;
 };
+
+// Image size of the temporal runs unless -W/-H say otherwise: they render hundreds of frames.
+constexpr int kTemporalSize = 128;
+
+// Flicker and settle runs; prints them and fills the JSON record's part.
+TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
+  TemporalRecord t;
+  FrameSettings settings = o.frame.settings();
+  settings.width = o.width_given ? o.frame.width : kTemporalSize;
+  settings.height = o.height_given ? o.frame.height : kTemporalSize;
+  t.width = settings.width;
+  t.height = settings.height;
+  const TechniqueFactory make = [&o] { return make_configured_technique(o.frame); };
+  if (o.flicker > 0) {
+    t.flicker_frames = o.flicker;
+    t.flicker_warmup = o.warmup;
+    t.flicker_at_rest = measure_flicker(scene, make, settings, o.warmup, o.flicker, true).flicker;
+    const FlickerResult off = measure_flicker(scene, make, settings, o.warmup, o.flicker, false);
+    t.flicker_accumulation_off = off.flicker;
+    t.accumulation_params = off.turned_off;
+    std::string params;
+    for (const auto& name : off.turned_off)
+      params += (params.empty() ? "" : ", ") + name + "=false";
+    if (params.empty()) params = "none to turn off";
+    fmt::print(
+        "flicker ({}x{}, {} frames after {} warm-up): {:.4f} at rest, {:.4f} with accumulation "
+        "off (FrameSettings.accumulate=false; technique: {})\n",
+        t.width, t.height, o.flicker, o.warmup, t.flicker_at_rest, t.flicker_accumulation_off,
+        params);
+  }
+  if (o.settle) {
+    t.settle = true;
+    t.settle_options = o.settle_options;
+    t.settle_result = measure_settle(scene, make, settings, o.settle_options);
+    const SettleResult& r = t.settle_result;
+    const SettleOptions& so = o.settle_options;
+    const std::string where =
+        fmt::format("{}x{}, {}-pixel blocks, target: mean indirect of frames {}..{} after the move",
+                    t.width, t.height, so.block, so.frames, so.frames + so.target_frames - 1);
+    if (!r.applicable)
+      fmt::print("settle: n/a ({})\n", r.reason);
+    else if (r.settle_frame == kNotSettled)
+      fmt::print("settle ({}): not within {:g}% after {} frames; last error {:.1f}%\n", where,
+                 100.0 * so.tolerance, so.frames, 100.0 * r.errors.back());
+    else
+      fmt::print("settle ({}): {} frames to within {:g}%; first frame's error {:.1f}%\n", where,
+                 r.settle_frame, 100.0 * so.tolerance, 100.0 * r.errors.front());
+    if (r.applicable)
+      fmt::print(
+          "  light '{}' moved by {:g} of the scene diagonal ({:.3g}, {:.3g}, {:.3g}); before the "
+          "move the converged indirect light was {:.1f}% off\n",
+          r.light, so.move_fraction, r.offset.x, r.offset.y, r.offset.z, 100.0 * r.change);
+  }
+  return t;
+}
 
 void run_bench(BenchOptions o) {
   const ThreadLimit limit(o.frame.threads);
@@ -59,7 +121,10 @@ void run_bench(BenchOptions o) {
   fmt::print("primary rays/s (gbuffer)     {:>10.2f} M\n", primary / (gbuffer_ms * 1e3));
   fmt::print("shadow rays/s (direct stage) {:>10.2f} M  ({:.0f} shadow rays per frame)\n",
              shadow / (direct_ms * 1e3), shadow / o.frames);
+  TemporalRecord temporal;
+  if (o.flicker > 0 || o.settle) temporal = run_temporal(o, scene);
   if (o.json.empty()) return;
+  record.temporal = &temporal;
   record.scene = scene.source;
   record.technique = renderer.technique().name();
   for (const auto& p : renderer.technique().params().all())
@@ -91,7 +156,36 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--json", options->json,
                   "Also write the results, build and machine as JSON to this file");
-  cmd->callback([options] { run_bench(*options); });
+  const std::string size = fmt::format("{0}x{0} unless -W/-H are given", kTemporalSize);
+  cmd->add_option(
+         "--flicker", options->flicker,
+         "Also measure flicker over N frames at rest, and with accumulation off (" + size + ")")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_flag("--settle", options->settle,
+                "Also count the frames indirect light needs to settle within the tolerance after "
+                "the first light moves (" +
+                    size + ")");
+  cmd->add_option("--settle-frames", options->settle_options.frames,
+                  "Settle: frames measured after the move (the cap); as many are rendered at "
+                  "rest before it, and 4 times as many after them for the converged target")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--settle-tolerance", options->settle_options.tolerance,
+                  "Settle: relative L1 error of block sums counted as settled")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--settle-block", options->settle_options.block,
+                  "Settle: side of the pixel blocks whose sums are compared")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  cmd->callback([options, cmd] {
+    options->width_given = cmd->count("--width") > 0;
+    options->height_given = cmd->count("--height") > 0;
+    SettleOptions& s = options->settle_options;
+    s.rest_frames = s.frames;
+    s.target_frames = 4 * s.frames;
+    run_bench(*options);
+  });
 }
 
 }  // namespace bounce::app

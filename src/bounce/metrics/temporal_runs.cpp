@@ -1,0 +1,115 @@
+#include "bounce/metrics/temporal_runs.h"
+
+#include <algorithm>
+
+#include "bounce/core/error.h"
+#include "bounce/trace/tracer.h"
+
+namespace bounce {
+
+SceneChange move_first_light(Scene& scene, vec3 offset, std::string* moved) {
+  for (Light& light : scene.lights) {
+    if (light.type == LightType::kDirectional) continue;
+    light.position += offset;
+    scene.derive();
+    if (moved) *moved = light.name;
+    SceneChange change;
+    change.lights = true;
+    return change;
+  }
+  if (scene.area_lights.empty()) return SceneChange{};
+  const AreaLight& area = scene.area_lights.front();
+  const uint32_t mesh_id = area.triangles.front().mesh;  // an area light lies in one mesh
+  Mesh& mesh = scene.meshes[mesh_id];
+  std::vector<uint8_t> move(mesh.positions.size(), 0);
+  for (const TriangleRef& t : area.triangles) {
+    const uvec3 v = mesh.triangles[t.triangle];
+    move[v.x] = move[v.y] = move[v.z] = 1;
+  }
+  for (size_t i = 0; i < move.size(); ++i)
+    if (move[i]) mesh.positions[i] += offset;
+  if (moved) *moved = area.name;
+  scene.derive();  // invalidates `area`
+  return SceneChange{.moved_meshes = {mesh_id}, .lights = true};
+}
+
+std::vector<std::string> disable_accumulation(ParamSet& params) {
+  std::vector<std::string> names;
+  for (const char* name : {"progressive", "accumulate"}) {
+    const Param* p = params.find(name);
+    if (!p || p->kind != Param::Kind::kBool) continue;
+    params.set(name, "false");
+    names.emplace_back(name);
+  }
+  return names;
+}
+
+FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
+                              FrameSettings settings, int warmup, int frames, bool accumulate) {
+  if (frames < 1) fail("flicker needs at least one frame (got {})", frames);
+  FlickerResult result;
+  std::unique_ptr<Technique> technique = make();
+  if (!accumulate) result.turned_off = disable_accumulation(technique->params());
+  settings.accumulate = accumulate;
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, std::move(technique));
+  for (int k = 0; k < warmup; ++k) renderer.render(scene.camera, settings);
+  FlickerAccumulator acc;
+  for (int k = 0; k < frames; ++k) acc.add(renderer.render(scene.camera, settings).color);
+  result.flicker = acc.flicker();
+  result.mean_deviation = acc.mean_deviation();
+  result.mean_value = acc.mean_value();
+  return result;
+}
+
+SettleResult measure_settle(const Scene& original, const TechniqueFactory& make,
+                            FrameSettings settings, const SettleOptions& o) {
+  if (o.rest_frames < 0 || o.frames < 1 || o.target_frames < 1)
+    fail("settle: frame counts must be positive (rest {}, measured {}, target {})", o.rest_frames,
+         o.frames, o.target_frames);
+  SettleResult result;
+  std::unique_ptr<Technique> technique = make();
+  if (!technique->has_indirect()) {
+    result.reason = "technique '" + technique->name() + "' has no indirect light";
+    return result;
+  }
+  Scene scene = original;  // the light moves in this copy
+  const float length = glm::length(o.direction);
+  if (!(length > 0.0f)) fail("settle: the direction of the light's move is zero");
+  result.offset = o.direction * (o.move_fraction * scene.bounds.diagonal() / length);
+  {
+    Scene probe = scene;  // is there a light to move?
+    if (!move_first_light(probe, result.offset).any()) {
+      result.reason = "scene '" + scene.source + "' has no light that can move";
+      return result;
+    }
+  }
+  result.applicable = true;
+  settings.accumulate = true;
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, std::move(technique));
+
+  Image before;
+  for (int k = 0; k < o.rest_frames; ++k) {
+    const Frame& f = renderer.render(scene.camera, settings);
+    if (k == o.rest_frames - 1) before = f.indirect;
+  }
+  renderer.scene_changed(move_first_light(scene, result.offset, &result.light));
+
+  std::vector<BlockSums> after;
+  after.reserve(size_t(o.frames));
+  for (int k = 0; k < o.frames; ++k)
+    after.push_back(block_sums(renderer.render(scene.camera, settings).indirect, o.block));
+  Image target(settings.width, settings.height);
+  for (int k = 0; k < o.target_frames; ++k)
+    target += renderer.render(scene.camera, settings).indirect;
+  target *= 1.0f / float(o.target_frames);
+
+  const BlockSums target_sums = block_sums(target, o.block);
+  for (const BlockSums& f : after) result.errors.push_back(block_error(f, target_sums));
+  result.settle_frame = settle_frame(result.errors, o.tolerance);
+  result.change = before.empty() ? 0.0 : block_error(block_sums(before, o.block), target_sums);
+  return result;
+}
+
+}  // namespace bounce

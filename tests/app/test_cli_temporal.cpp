@@ -1,0 +1,93 @@
+// bounce bench --flicker / --settle end to end: the text report and the JSON keys.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "app/cli_test_util.h"
+
+namespace bounce {
+namespace {
+
+using cli_test::Result;
+using cli_test::run;
+using cli_test::scratch_dir;
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+TEST(CliTemporal, BenchReportsFlickerAndSettleAsTextAndJson) {
+  const std::filesystem::path dir = scratch_dir("bench-temporal");
+  const std::string path = (dir / "bench.json").string();
+  const Result r =
+      run("bench cornell -t tiled --flicker 4 --settle --settle-frames 8 -W 32 -H 32 --frames 2 "
+          "--warmup 1 --json " +
+          path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "flicker (32x32, 4 frames after 1 warm-up)")) << r.output;
+  EXPECT_TRUE(contains(r.output, "progressive=false")) << r.output;
+  EXPECT_TRUE(contains(r.output, "settle (32x32, 16-pixel blocks")) << r.output;
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json& f = j["flicker"];
+  ASSERT_TRUE(f.is_object()) << j.dump(2);
+  EXPECT_EQ(f["width"], 32);
+  EXPECT_EQ(f["height"], 32);
+  EXPECT_EQ(f["frames"], 4);
+  EXPECT_GE(f["at_rest"].get<double>(), 0.0);
+  EXPECT_GT(f["accumulation_off"].get<double>(), 0.0);
+  EXPECT_EQ(f["params_turned_off"], nlohmann::json::array({"progressive"}));
+  const nlohmann::json& s = j["settle"];
+  ASSERT_TRUE(s.is_object()) << j.dump(2);
+  EXPECT_EQ(s["applicable"], true);
+  EXPECT_EQ(s["settled"], true);
+  EXPECT_GE(s["frames"].get<int>(), 0);
+  EXPECT_LE(s["frames"].get<int>(), 8);
+  EXPECT_EQ(s["max_frames"], 8);
+  EXPECT_EQ(s["tolerance"], 0.05);
+  EXPECT_EQ(s["block"], 16);
+  EXPECT_EQ(s["errors"].size(), 8u);
+  EXPECT_GT(s["change"].get<double>(), 0.0);
+  EXPECT_FALSE(s["light"].get<std::string>().empty());
+}
+
+TEST(CliTemporal, DirectHasNoSettleAndPlainBenchHasNoTemporalMetrics) {
+  const std::filesystem::path dir = scratch_dir("bench-temporal-direct");
+  const std::string path = (dir / "bench.json").string();
+  Result r =
+      run("bench cornell -t direct --flicker 3 --settle -W 16 -H 16 --frames 1 --warmup 0 "
+          "--json " +
+          path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "settle: n/a")) << r.output;
+  {
+    std::ifstream in(path);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["settle"]["applicable"], false);
+    EXPECT_TRUE(j["settle"]["frames"].is_null());
+    EXPECT_TRUE(j["flicker"]["params_turned_off"].empty());
+    EXPECT_GE(j["flicker"]["at_rest"].get<double>(), 0.0);
+  }
+  r = run("bench cornell -t direct -W 16 -H 16 --frames 1 --warmup 0 --json " + path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(contains(r.output, "flicker")) << r.output;
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["flicker"].is_null());
+  EXPECT_TRUE(j["settle"].is_null());
+}
+
+TEST(CliTemporal, BadTemporalOptionsAreRejected) {
+  for (const char* args : {"bench cornell --flicker -1", "bench cornell --settle-frames 0",
+                           "bench cornell --settle-tolerance -0.5"}) {
+    const Result r = run(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.status, -1) << args << " crashed";
+  }
+}
+
+}  // namespace
+}  // namespace bounce
