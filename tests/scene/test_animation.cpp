@@ -7,6 +7,7 @@
 #include "bounce/core/error.h"
 #include "bounce/scene/animation.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_edit.h"
 
 namespace bounce {
 namespace {
@@ -137,6 +138,12 @@ TEST(Animation, MovingAnEmissiveMeshMovesItsAreaLightAndTheBounds) {
   expect_near(s.area_lights[0].normals[0], vec3(0, 1, 0));
   EXPECT_NEAR(s.bounds.hi.y, -1.0f, kEps);
   EXPECT_NEAR(s.area_lights[0].area, 0.5f, kEps);
+  // An edit moves the light now and stays through later poses (the rest copy moved too).
+  const SceneChange c = move_area_light(s, 0, vec3(0.0f, 0.0f, 2.0f));
+  EXPECT_EQ(c.moved_meshes, std::vector<uint32_t>{0});
+  EXPECT_TRUE(c.lights);
+  animate(s, 0.0f);  // back to the start pose, 2 m further along +z
+  expect_near(s.meshes[0].positions[0], vec3(0, 1, 2));
 }
 
 TEST(Animation, LightsFollowTheirTracks) {

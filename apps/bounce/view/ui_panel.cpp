@@ -113,15 +113,9 @@ void lights_section(ViewSession& session) {
     ImGui::Text("%s (area, %.3g m^2)", al.name.c_str(), al.area);
     Material& m = scene.materials[material];
     if (colour_and_strength("area", m.emission)) session.materials_changed();
-    // Moving the light moves its mesh, so only meshes that are all this light offer it.
-    const Mesh& mesh = scene.meshes[first.mesh];
-    const bool whole_mesh = std::all_of(mesh.materials.begin(), mesh.materials.end(),
-                                        [&](uint32_t k) { return k == material; });
-    if (whole_mesh) {
-      vec3 offset(0.0f);
-      if (ImGui::DragFloat3("move", &offset.x, step) && offset != vec3(0.0f))
-        session.translate_mesh(first.mesh, offset);
-    }
+    vec3 offset(0.0f);
+    if (ImGui::DragFloat3("move", &offset.x, step) && offset != vec3(0.0f))
+      session.move_area_light(i, offset);
     ImGui::PopID();
   }
 }

@@ -6,6 +6,7 @@
 #include "bounce/core/error.h"
 #include "bounce/render/technique.h"
 #include "bounce/scene/load.h"
+#include "bounce/scene/scene_edit.h"
 
 namespace bounce::app {
 
@@ -66,15 +67,8 @@ void ViewSession::materials_changed() {
   scene_.derive();  // emission may have turned a material into a light or back
 }
 
-void ViewSession::translate_mesh(uint32_t mesh, vec3 offset) {
-  Mesh& m = scene_.meshes.at(mesh);
-  for (vec3& p : m.positions) p += offset;
-  // An animated mesh's rest copy moves too, or the next pose would undo the edit.
-  for (AnimatedMesh& am : scene_.animation.meshes)
-    if (am.mesh == mesh)
-      for (vec3& p : am.rest_positions) p += offset;
-  scene_.derive();
-  pending_.merge(SceneChange{{mesh}, true, false});
+void ViewSession::move_area_light(size_t index, vec3 offset) {
+  pending_.merge(bounce::move_area_light(scene_, index, offset));
 }
 
 void ViewSession::set_time(float t) {

@@ -52,8 +52,8 @@ class ViewSession {
   // After editing scene.lights or an emissive material.
   void lights_changed();
   void materials_changed();
-  // Moves every vertex of mesh `mesh` by `offset` (the panel's area-light position).
-  void translate_mesh(uint32_t mesh, vec3 offset);
+  // Moves area light `index` by `offset` (the panel's area-light position).
+  void move_area_light(size_t index, vec3 offset);
   float& exposure() { return exposure_; }
   bool& playing() { return playing_; }
   bool& follow_path() { return follow_path_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bounce/core/error.h"
+#include "bounce/scene/scene_edit.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -18,19 +19,8 @@ SceneChange move_first_light(Scene& scene, vec3 offset, std::string* moved) {
     return change;
   }
   if (scene.area_lights.empty()) return SceneChange{};
-  const AreaLight& area = scene.area_lights.front();
-  const uint32_t mesh_id = area.triangles.front().mesh;  // an area light lies in one mesh
-  Mesh& mesh = scene.meshes[mesh_id];
-  std::vector<uint8_t> move(mesh.positions.size(), 0);
-  for (const TriangleRef& t : area.triangles) {
-    const uvec3 v = mesh.triangles[t.triangle];
-    move[v.x] = move[v.y] = move[v.z] = 1;
-  }
-  for (size_t i = 0; i < move.size(); ++i)
-    if (move[i]) mesh.positions[i] += offset;
-  if (moved) *moved = area.name;
-  scene.derive();  // invalidates `area`
-  return SceneChange{.moved_meshes = {mesh_id}, .lights = true};
+  if (moved) *moved = scene.area_lights.front().name;
+  return move_area_light(scene, 0, offset);
 }
 
 std::vector<std::string> disable_accumulation(ParamSet& params) {
