@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "bench_json.h"
+#include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/metrics/temporal_runs.h"
 #include "bounce/scene/load.h"
@@ -27,7 +28,10 @@ struct BenchOptions {
   bool settle = false;
   SettleOptions settle_options;
   bool width_given = false, height_given = false;
+  bool animate = false;  // play the scene's animation, 1/30 s per frame
 };
+
+constexpr float kAnimationStep = 1.0f / 30.0f;
 
 // Image size of the temporal runs unless -W/-H say otherwise: they render hundreds of frames.
 constexpr int kTemporalSize = 128;
@@ -86,17 +90,25 @@ TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
 
 void run_bench(BenchOptions o) {
   const ThreadLimit limit(o.frame.threads);
-  const Scene scene = load_scene(o.frame.scene);
+  Scene scene = load_scene(o.frame.scene);
+  if (o.animate && scene.animation.empty())
+    fail("{}: --animate: the scene has no animation", scene.source);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
   const FrameSettings settings = o.frame.settings();
+  int frame_number = 0;
+  const auto next_frame = [&]() -> const Frame& {
+    if (o.animate) renderer.animate(scene, kAnimationStep * float(frame_number));
+    ++frame_number;
+    return renderer.render(scene.camera, settings);
+  };
 
-  for (int k = 0; k < o.warmup; ++k) renderer.render(scene.camera, settings);
+  for (int k = 0; k < o.warmup; ++k) next_frame();
   StageStatistics stats;
   double primary = 0.0, shadow = 0.0, gbuffer_ms = 0.0, direct_ms = 0.0;
   BenchRecord record;
   for (int k = 0; k < o.frames; ++k) {
-    const Frame& f = renderer.render(scene.camera, settings);
+    const Frame& f = next_frame();
     stats.add(f.times);
     primary += double(f.primary_rays);
     shadow += double(f.shadow_rays);
@@ -111,9 +123,9 @@ void run_bench(BenchOptions o) {
       o.frame.threads > 0 ? o.frame.threads : int(std::thread::hardware_concurrency());
   fmt::print(
       "bench {} technique {} {}x{}, {} light samples, {} frames after {} warm-up, {} "
-      "threads\n",
+      "threads{}\n",
       scene.source, renderer.technique().name(), settings.width, settings.height,
-      settings.light_samples, o.frames, o.warmup, threads);
+      settings.light_samples, o.frames, o.warmup, threads, o.animate ? ", animated" : "");
   print_stage_table(stats, true);
   const double total_ms = stats.rows().back().mean_ms;
   fmt::print("frame rate                   {:>10.1f} fps\n",
@@ -154,6 +166,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--warmup", options->warmup, "Frames rendered before timing")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
+  cmd->add_flag("--animate", options->animate,
+                "Play the scene's animation (1/30 s per frame): the scene stage then shows the "
+                "cost of posing the scene and refitting the acceleration structure");
   cmd->add_option("--json", options->json,
                   "Also write the results, build and machine as JSON to this file");
   const std::string size = fmt::format("{0}x{0} unless -W/-H are given", kTemporalSize);

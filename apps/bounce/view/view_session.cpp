@@ -107,7 +107,7 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
     time_set_ = true;
   }
   if (time_set_) {
-    pending_.merge(animate(scene_, time_));
+    renderer_->animate(scene_, time_);
     time_set_ = false;
   }
   if (follow_path_ && !scene_.animation.camera_path.empty()) {

@@ -22,6 +22,13 @@ void Renderer::scene_changed(const SceneChange& change) {
   pending_.merge(change);
 }
 
+void Renderer::animate(Scene& scene, float t) {
+  if (&scene != &scene_) fail("{}: Renderer::animate was given another scene", scene.source);
+  Stopwatch watch;
+  scene_changed(bounce::animate(scene, t));
+  pose_ms_ += watch.elapsed_ms();
+}
+
 void Renderer::update_scene() {
   if (!pending_.any()) return;
   if (pending_.geometry()) tracer_.update(scene_, pending_.moved_meshes);
@@ -69,6 +76,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "scene");
     update_scene();
   }
+  f.times.add("scene", pose_ms_);
+  pose_ms_ = 0.0;
   const int w = settings.width, h = settings.height;
   const CameraRays rays = CameraRays::from(camera, w, h);
   // Jittered frames walk a Halton (2, 3) pattern over the pixel, so their average is the

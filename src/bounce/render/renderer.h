@@ -51,6 +51,9 @@ class Renderer {
   // Says the scene was edited or animated since the last frame: the next frame refits the
   // tracer for moved meshes, restarts the technique's accumulated state and direct averaging.
   void scene_changed(const SceneChange& change);
+  // Poses `scene`, which must be the scene this renderer draws, at animation time t (seconds)
+  // and passes the change on; the next frame's "scene" stage includes this work and the refit.
+  void animate(Scene& scene, float t);
   // Renders the next frame from `camera`; the returned frame stays valid until the next call.
   const Frame& render(const Camera& camera, const FrameSettings& settings);
   uint32_t frame_index() const { return frame_index_; }
@@ -65,6 +68,7 @@ class Renderer {
   Frame frame_;
   uint32_t frame_index_ = 0;
   SceneChange pending_;
+  double pose_ms_ = 0.0;  // animate() time since the last frame
   // Direct-light averaging at rest.
   Image direct_sum_;
   int direct_frames_ = 0;
