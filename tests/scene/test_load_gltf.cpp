@@ -10,6 +10,7 @@
 #include "bounce/core/image.h"
 #include "bounce/core/image_io.h"
 #include "bounce/scene/load.h"
+#include "gltf_build.h"
 #include "gltf_export.h"
 #include "scene_test_util.h"
 
@@ -23,27 +24,8 @@ using scene_test::expect_near;
 using scene_test::find_mesh;
 using scene_test::TempDir;
 
-// Appends values to buffer 0 as a new bufferView and accessor; returns the accessor.
-template <typename T>
-int add_data(tg::Model& m, const std::vector<T>& values, int component_type, int type,
-             size_t count) {
-  std::vector<unsigned char>& data = m.buffers[0].data;
-  while (data.size() % 4) data.push_back(0);
-  tg::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = values.size() * sizeof(T);
-  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-  data.insert(data.end(), bytes, bytes + view.byteLength);
-  m.bufferViews.push_back(view);
-  tg::Accessor a;
-  a.bufferView = int(m.bufferViews.size() - 1);
-  a.componentType = component_type;
-  a.type = type;
-  a.count = count;
-  m.accessors.push_back(a);
-  return int(m.accessors.size() - 1);
-}
+using gltf_build::add_data;
+using gltf_build::object;
 
 int add_positions(tg::Model& m, const std::vector<float>& xyz) {
   const int a = add_data(m, xyz, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, xyz.size() / 3);
@@ -55,10 +37,6 @@ int add_positions(tg::Model& m, const std::vector<float>& xyz) {
   m.accessors[size_t(a)].minValues = {lo.x, lo.y, lo.z};
   m.accessors[size_t(a)].maxValues = {hi.x, hi.y, hi.z};
   return a;
-}
-
-tg::Value object(std::initializer_list<std::pair<const std::string, tg::Value>> members) {
-  return tg::Value(tg::Value::Object(members));
 }
 
 // One right triangle (0,0,0), (1,0,0), (0,1,0) with u16 indices, one material, one node.
