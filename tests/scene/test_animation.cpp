@@ -99,6 +99,16 @@ TEST(Animation, NestedTracksEqualTheComposedNodeTransforms) {
   }
 }
 
+TEST(Animation, AMovedMeshKeepsItsOffsetThroughLaterPoses) {
+  NestedScene n;
+  const SceneChange c = move_mesh(n.scene, 0, vec3(0.0f, 5.0f, 0.0f));
+  EXPECT_EQ(c.moved_meshes, std::vector<uint32_t>{0});
+  EXPECT_NEAR(n.scene.bounds.lo.y, 5.0f, kEps);
+  animate(n.scene, 1.0f);
+  for (int i = 0; i < 3; ++i)
+    expect_near(n.scene.meshes[0].positions[size_t(i)], n.expected(i, 1.0f) + vec3(0, 5, 0));
+}
+
 TEST(Animation, ClampsWithoutLoopAndReportsNoChangeWhenThePoseIsTheSame) {
   NestedScene n;
   EXPECT_TRUE(animate(n.scene, 5.0f).geometry());

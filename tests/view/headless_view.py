@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Headless viewer test: starts its own Xvfb, plays a scripted interaction in `bounce view`
-(move, flashlight, technique switch, panel) and checks the screenshots: none blank, each
+(move, flashlight, technique switch, moving an object, panel) and checks the screenshots: none blank, each
 differing from the one before where the action should change the picture, in the direction it
 should (a flashlight adds light, dropping indirect light removes some), and the round trip back
 to the first technique looking like where it started. Also checks the viewer's errors: a bad
@@ -139,6 +139,9 @@ technique tiled
 flashlight off
 wait 6
 screenshot {shot('back')}
+object 6 -0.1 0 0   # slide the short block's front face towards the red wall
+wait 3
+screenshot {shot('object')}
 ui on
 wait 1
 screenshot {shot('panel')}
@@ -150,12 +153,12 @@ screenshot {shot('panel')}
         if run.returncode != 0:
             fail(f"bounce view exited with {run.returncode}: {run.stderr.strip()}")
         images = {n: Shot(shot(n)) for n in
-                  ("start", "moved", "flashlight", "direct", "back", "panel")}
+                  ("start", "moved", "flashlight", "direct", "back", "object", "panel")}
         for name, image in images.items():
             check_not_blank(name, image)
         # Each action changes the picture.
         for a, b in (("start", "moved"), ("moved", "flashlight"), ("flashlight", "direct"),
-                     ("direct", "back"), ("back", "panel")):
+                     ("direct", "back"), ("back", "object"), ("object", "panel")):
             d = mean_abs_diff(images[a], images[b])
             if d < 0.005:
                 fail(f"{a} and {b} are nearly identical (mean difference {d:.4f})")

@@ -120,6 +120,24 @@ void lights_section(ViewSession& session) {
   }
 }
 
+// Meshes to move by hand (the first kMaxListed: levels have thousands).
+void objects_section(ViewSession& session) {
+  constexpr size_t kMaxListed = 64;
+  Scene& scene = session.scene();
+  const float step = 0.005f * std::max(scene.bounds.diagonal(), 1e-3f);
+  const size_t n = std::min(scene.meshes.size(), kMaxListed);
+  for (size_t i = 0; i < n; ++i) {
+    ImGui::PushID(int(2000000 + i));
+    vec3 offset(0.0f);
+    const std::string label =
+        fmt::format("{} ({} tri)", scene.meshes[i].name, scene.meshes[i].triangle_count());
+    if (ImGui::DragFloat3(label.c_str(), &offset.x, step) && offset != vec3(0.0f))
+      session.move_mesh(uint32_t(i), offset);
+    ImGui::PopID();
+  }
+  if (scene.meshes.size() > n) ImGui::Text("(%zu more meshes)", scene.meshes.size() - n);
+}
+
 }  // namespace
 
 void draw_panel(ViewSession& session, PanelState& state) {
@@ -178,6 +196,7 @@ void draw_panel(ViewSession& session, PanelState& state) {
     }
   }
   if (ImGui::CollapsingHeader("lights")) lights_section(session);
+  if (ImGui::CollapsingHeader("objects (drag to move)")) objects_section(session);
   ImGui::End();
 }
 

@@ -71,6 +71,10 @@ void ViewSession::move_area_light(size_t index, vec3 offset) {
   pending_.merge(bounce::move_area_light(scene_, index, offset));
 }
 
+void ViewSession::move_mesh(uint32_t index, vec3 offset) {
+  pending_.merge(bounce::move_mesh(scene_, index, offset));
+}
+
 void ViewSession::set_time(float t) {
   time_ = std::max(t, 0.0f);
   time_set_ = true;
@@ -185,6 +189,12 @@ bool ViewSession::apply(const ScriptAction& a) {
       l.emission() = v;
     }
     lights_changed();
+  } else if (a.verb == "object") {
+    const int i = a.integer(0);
+    if (size_t(i) >= scene_.meshes.size())
+      fail("{}: object {} does not exist (the scene has {} meshes)", a.where(), i,
+           scene_.meshes.size());
+    move_mesh(uint32_t(i), vector_arg(a, 1));
   } else if (a.verb == "exposure") {
     exposure_ = a.number(0);
   } else if (a.verb == "play") {

@@ -54,6 +54,8 @@ class ViewSession {
   void materials_changed();
   // Moves area light `index` by `offset` (the panel's area-light position).
   void move_area_light(size_t index, vec3 offset);
+  // Moves mesh `index` by `offset` (the panel's object list).
+  void move_mesh(uint32_t index, vec3 offset);
   float& exposure() { return exposure_; }
   bool& playing() { return playing_; }
   bool& follow_path() { return follow_path_; }

@@ -15,4 +15,7 @@ namespace bounce {
 // the edit, and re-derives the scene (area lights, bounds).
 SceneChange move_area_light(Scene& scene, size_t index, vec3 offset);
 
+// Moves every vertex of mesh `index` by `offset`, the same way.
+SceneChange move_mesh(Scene& scene, uint32_t index, vec3 offset);
+
 }  // namespace bounce
