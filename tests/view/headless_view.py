@@ -202,6 +202,21 @@ screenshot {shot('path')}
             if d < 0.005:
                 fail(f"{a} and {b} are nearly identical (mean difference {d:.4f})")
 
+        # Speed in motion, quality at rest: with an unreachable frame-time target (1 ms) the
+        # internal resolution falls to its floor (1/4) while the camera turns, and returns to
+        # the window's size once it stops.
+        for name, rest_frames, size in (("turning", 0, f"{W // 4}x{H // 4}"),
+                                        ("stopped", 3, f"{W}x{H}")):
+            path = os.path.join(out, name + ".txt")
+            with open(path, "w") as f:
+                f.write("turn 1 0\nwait 1\n" * 12 + (f"wait {rest_frames}\n" if rest_frames else ""))
+            run = subprocess.run(
+                [args.bounce, "view", "--script", path, "-W", str(W), "-H", str(H),
+                 "--target-ms", "1"], env=env, capture_output=True, text=True, timeout=120)
+            if run.returncode != 0 or f"at {size}" not in run.stdout:
+                fail(f"{name}: expected the last frame at {size}: {run.stdout.strip()} "
+                     f"{run.stderr.strip()}")
+
         # Errors: a bad script line names the file and line; no display is a clear error.
         bad = os.path.join(out, "bad.txt")
         with open(bad, "w") as f:
