@@ -90,7 +90,7 @@ TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
 
 void run_bench(BenchOptions o) {
   const ThreadLimit limit(o.frame.threads);
-  Scene scene = load_scene(o.frame.scene);
+  Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   if (o.animate && scene.animation.empty())
     fail("{}: --animate: the scene has no animation", scene.source);
   auto tracer = make_embree_tracer(scene);
@@ -98,7 +98,7 @@ void run_bench(BenchOptions o) {
   const FrameSettings settings = o.frame.settings();
   int frame_number = 0;
   const auto next_frame = [&]() -> const Frame& {
-    if (o.animate) renderer.animate(scene, kAnimationStep * float(frame_number));
+    if (o.animate) renderer.animate(scene, o.frame.at + kAnimationStep * float(frame_number));
     ++frame_number;
     return renderer.render(scene.camera, settings);
   };

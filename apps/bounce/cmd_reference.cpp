@@ -30,6 +30,7 @@ struct ReferenceOptions {
   uint32_t seed = 0;
   int threads = 0;
   float exposure_ev = 0.0f;
+  float at = 0.0f;  // animation time
   std::string out;
 };
 
@@ -74,7 +75,7 @@ class ProgressLine {
 void run_reference(const ReferenceOptions& o) {
   const ThreadLimit limit(o.threads);
   const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
-  const Scene scene = load_scene(o.scene);
+  const Scene scene = load_scene_at(o.scene, o.at);
   auto tracer = make_embree_tracer(scene);
   ReferenceSettings settings;
   settings.width = o.width;
@@ -130,6 +131,9 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--time", o->time_s,
                   "Stop after this many seconds even if --spp is not reached (0: no limit)")
       ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+  cmd->add_option("--at", o->at, "Animated scenes: the animation time to pose the scene at, s")
+      ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   cmd->add_option("--max-bounces", o->max_bounces,
                   "Indirect bounces counted: 0 direct light only, 1 one bounce, ...; -1 no limit")

@@ -38,7 +38,7 @@ void run_render(const RenderOptions& o) {
   const ThreadLimit limit(o.frame.threads);
   const std::string out = o.out.empty() ? default_output(o.frame.scene) : o.out;
   Stopwatch load_watch;
-  const Scene scene = load_scene(o.frame.scene);
+  const Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   const double load_ms = load_watch.elapsed_ms();
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_still_technique(o.frame));

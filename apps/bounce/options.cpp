@@ -8,6 +8,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/render/technique.h"
+#include "bounce/scene/load.h"
 
 namespace bounce::app {
 
@@ -21,6 +22,12 @@ std::string scene_stem(const std::string& scene) {
   for (char& c : stem)
     if (c == ':') c = '-';
   return stem;
+}
+
+Scene load_scene_at(const std::string& spec, float at) {
+  Scene scene = load_scene(spec);
+  animate(scene, at);  // nothing to do for a still scene
+  return scene;
 }
 
 FrameSettings FrameOptions::settings() const {
@@ -59,6 +66,9 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_option("--exposure", o.exposure_ev, "Exposure in stops for PNG output")
       ->capture_default_str();
   command.add_option("--seed", o.seed, "Seed of the sample patterns")->capture_default_str();
+  command.add_option("--at", o.at, "Animated scenes: the animation time to pose the scene at, s")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   command.add_option("-j,--threads", o.threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();

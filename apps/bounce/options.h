@@ -19,6 +19,7 @@ struct FrameOptions {
   float exposure_ev = 0.0f;
   uint32_t seed = 0;
   int threads = 0;
+  float at = 0.0f;  // animation time the scene is posed at, seconds
   std::vector<std::string> params;
   // Photon-mapping shortcuts for --param (empty: the technique's default).
   std::string photons, radius, bounces, lowres, tile, gather;
@@ -28,6 +29,8 @@ struct FrameOptions {
 
 // Adds [SCENE] and the frame options to a command.
 void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
+// Loads a scene and, if it is animated, poses it at `at` seconds.
+Scene load_scene_at(const std::string& spec, float at);
 // A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
 std::string scene_stem(const std::string& scene);
 

@@ -35,6 +35,7 @@ ViewSession::ViewSession(const ViewOptions& options)
   exposure_ = options.frame.exposure_ev;
   camera_ = FlyCamera(scene_.camera);
   playing_ = !scene_.animation.empty();
+  time_ = options.frame.at;
 }
 
 void ViewSession::reset_camera() {
