@@ -28,7 +28,7 @@ constexpr Verb kScriptVerbs[] = {
     {"technique", 1, 1, "technique NAME         switch the indirect-light technique"},
     {"param", 2, 2, "param NAME VALUE       set a parameter of the current technique"},
     {"light", 5, 5, "light I position|color X Y Z   move or recolour light I (scene.lights)"},
-    {"object", 4, 4, "object I X Y Z          move mesh I by (X, Y, Z) metres"},
+    {"object", 4, 4, "object I X Y Z         move mesh I by (X, Y, Z) metres"},
     {"exposure", 1, 1, "exposure EV"},
     {"play", 1, 1, "play on|off            play the scene's animation"},
     {"time", 1, 1, "time SECONDS           set the animation time"},
