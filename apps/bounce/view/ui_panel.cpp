@@ -13,7 +13,8 @@ namespace bounce::app {
 
 namespace {
 
-// The technique's parameters, each as the widget its kind calls for.
+// The technique's parameters, each as the widget its kind calls for. Widgets write the values
+// in place; techniques compare their parameters each frame and restart on a change.
 void technique_section(ViewSession& session) {
   const std::vector<std::string> names = technique_names();
   const std::string current = session.technique_name();
@@ -23,10 +24,9 @@ void technique_section(ViewSession& session) {
     ImGui::EndCombo();
   }
   for (const Param& p : session.technique().params().all()) {
-    bool changed = false;
     switch (p.kind) {
       case Param::Kind::kBool:
-        changed = ImGui::Checkbox(p.name.c_str(), static_cast<bool*>(p.value));
+        ImGui::Checkbox(p.name.c_str(), static_cast<bool*>(p.value));
         break;
       case Param::Kind::kInt: {
         int* v = static_cast<int*>(p.value);
@@ -35,9 +35,7 @@ void technique_section(ViewSession& session) {
           ImGui::SliderInt(p.name.c_str(), &edited, int(p.min), int(p.max));
         else
           ImGui::InputInt(p.name.c_str(), &edited, 1, 100);
-        edited = std::clamp(edited, int(p.min), int(p.max));
-        changed = edited != *v;
-        *v = edited;
+        *v = std::clamp(edited, int(p.min), int(p.max));
         break;
       }
       case Param::Kind::kFloat: {
@@ -45,14 +43,11 @@ void technique_section(ViewSession& session) {
         float edited = *v;
         ImGui::DragFloat(p.name.c_str(), &edited, std::max(1e-4f, 0.01f * std::abs(*v)),
                          float(p.min), float(p.max), "%.4g");
-        edited = std::clamp(edited, float(p.min), float(p.max));
-        changed = edited != *v;
-        *v = edited;
+        *v = std::clamp(edited, float(p.min), float(p.max));
         break;
       }
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.help.c_str());
-    (void)changed;  // techniques compare their parameters each frame and restart on a change
   }
 }
 

@@ -14,11 +14,6 @@ namespace {
 
 constexpr size_t kHistory = 240;  // frames in the frame-time graph
 
-bool same_camera(const Camera& a, const Camera& b) {
-  return a.position == b.position && a.look_at == b.look_at && a.up == b.up &&
-         a.vfov_deg == b.vfov_deg;
-}
-
 vec3 vector_arg(const ScriptAction& a, size_t first) {
   return {a.number(first), a.number(first + 1), a.number(first + 2)};
 }
@@ -97,9 +92,7 @@ void ViewSession::place_flashlight() {
   if (!flashlight_index_) return;
   const Light l = make_flashlight(camera_.camera(), flashlight_settings_);
   Light& current = scene_.lights[*flashlight_index_];
-  if (current.position != l.position || current.direction != l.direction ||
-      current.intensity != l.intensity || current.cos_inner != l.cos_inner ||
-      current.cos_outer != l.cos_outer) {
+  if (current != l) {
     current = l;
     lights_changed();
   }
@@ -123,8 +116,7 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
   place_flashlight();
   const Camera camera = camera_.camera();
 
-  moving_ =
-      first_frame_ || !same_camera(camera, last_camera_) || pending_.any() || settings_changed_;
+  moving_ = first_frame_ || camera != last_camera_ || pending_.any() || settings_changed_;
   first_frame_ = false;
   last_camera_ = camera;
   settings_changed_ = false;

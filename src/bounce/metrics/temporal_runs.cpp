@@ -23,6 +23,12 @@ SceneChange move_first_light(Scene& scene, vec3 offset, std::string* moved) {
   return move_area_light(scene, 0, offset);
 }
 
+bool has_movable_light(const Scene& scene) {
+  for (const Light& light : scene.lights)
+    if (light.type != LightType::kDirectional) return true;
+  return !scene.area_lights.empty();
+}
+
 std::vector<std::string> disable_accumulation(ParamSet& params) {
   std::vector<std::string> names;
   for (const char* name : {"progressive", "accumulate"}) {
@@ -63,17 +69,14 @@ SettleResult measure_settle(const Scene& original, const TechniqueFactory& make,
     result.reason = "technique '" + technique->name() + "' has no indirect light";
     return result;
   }
-  Scene scene = original;  // the light moves in this copy
   const float length = glm::length(o.direction);
   if (!(length > 0.0f)) fail("settle: the direction of the light's move is zero");
-  result.offset = o.direction * (o.move_fraction * scene.bounds.diagonal() / length);
-  {
-    Scene probe = scene;  // is there a light to move?
-    if (!move_first_light(probe, result.offset).any()) {
-      result.reason = "scene '" + scene.source + "' has no light that can move";
-      return result;
-    }
+  if (!has_movable_light(original)) {
+    result.reason = "scene '" + original.source + "' has no light that can move";
+    return result;
   }
+  Scene scene = original;  // the light moves in this copy
+  result.offset = o.direction * (o.move_fraction * scene.bounds.diagonal() / length);
   result.applicable = true;
   settings.accumulate = true;
   auto tracer = make_embree_tracer(scene);

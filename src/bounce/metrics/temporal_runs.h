@@ -23,6 +23,8 @@ namespace bounce {
 // {lights} or {moved_meshes = {the mesh}, lights}; nothing (any() false) when no light can move.
 // `moved`, when given, receives the light's name.
 SceneChange move_first_light(Scene& scene, vec3 offset, std::string* moved = nullptr);
+// Whether move_first_light has a light to move.
+bool has_movable_light(const Scene& scene);
 
 // Turns off a technique's own accumulation over frames: every bool parameter named
 // "progressive" or "accumulate". Returns the names it turned off.

@@ -39,11 +39,7 @@ void Renderer::update_scene() {
 
 void Renderer::average_direct(const CameraRays& rays, const FrameSettings& settings) {
   Image& direct = frame_.direct;
-  const CameraRays& a = rays;
-  const CameraRays& b = last_rays_;
-  const bool same = a.origin == b.origin && a.forward == b.forward && a.right == b.right &&
-                    a.up == b.up && a.width == b.width && a.height == b.height &&
-                    settings.light_samples == last_light_samples_;
+  const bool same = rays == last_rays_ && settings.light_samples == last_light_samples_;
   last_rays_ = rays;
   last_light_samples_ = settings.light_samples;
   if (!settings.accumulate || !same || direct_frames_ == 0) {

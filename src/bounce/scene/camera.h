@@ -11,6 +11,8 @@ struct Camera {
   vec3 look_at{0.0f, 0.0f, 1.0f};
   vec3 up{0.0f, 1.0f, 0.0f};
   float vfov_deg = 45.0f;  // vertical field of view
+
+  bool operator==(const Camera&) const = default;
 };
 
 // A camera prepared for an image size: maps pixel coordinates to ray directions.
@@ -21,6 +23,8 @@ struct CameraRays {
   vec3 up;       // image -y (towards the top), scaled to half the image plane height
   float width = 1.0f;
   float height = 1.0f;
+
+  bool operator==(const CameraRays&) const = default;
 
   static CameraRays from(const Camera& camera, int width, int height);
   // Unit direction through the continuous pixel position (px, py).

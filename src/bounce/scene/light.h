@@ -21,6 +21,8 @@ struct Light {
   float cos_inner = 1.0f;    // spot: full intensity inside this cone
   float cos_outer = 0.0f;    // spot: no light outside this cone (smoothstep between)
 
+  bool operator==(const Light&) const = default;
+
   static Light point(vec3 position, vec3 intensity);
   static Light spot(vec3 position, vec3 direction, vec3 intensity, float inner_deg,
                     float outer_deg);

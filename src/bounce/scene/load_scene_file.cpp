@@ -240,6 +240,27 @@ TrsTrack parse_model_animation(const Object& model, const std::string& file, con
   return track;
 }
 
+// Puts track k first in the track lists of entries[first_entry...] (AnimatedMesh or
+// AnimatedLight, naming their mesh or light by `item`) and gives the items in [base, end) that
+// have no entry yet one with track k alone.
+template <typename Entry>
+void prepend_track(std::vector<Entry>& entries, size_t first_entry, uint32_t Entry::*item,
+                   uint32_t base, uint32_t end, uint32_t k) {
+  std::vector<char> done(end - base, 0);
+  for (size_t e = first_entry; e < entries.size(); ++e) {
+    entries[e].tracks.insert(entries[e].tracks.begin(), k);
+    const uint32_t i = entries[e].*item;  // range checked later by prepare_animation
+    if (i >= base && i < end) done[i - base] = 1;
+  }
+  for (uint32_t i = base; i < end; ++i) {
+    if (done[i - base]) continue;
+    Entry entry;
+    entry.*item = i;
+    entry.tracks = {k};
+    entries.push_back(std::move(entry));
+  }
+}
+
 // A light's "animation": keyed positions (and directions for spot and directional lights) as a
 // track whose rest is the light's static position, so that its delta carries the rest position
 // onto the keyed one and turns the rest direction into the keyed one.
@@ -434,27 +455,10 @@ Scene load_scene_file(const std::string& path) {
       Animation& a = scene.animation;
       const uint32_t k = uint32_t(a.tracks.size());
       a.tracks.push_back(std::move(track));
-      std::vector<char> mesh_done(scene.meshes.size() - mesh_base, 0);
-      for (size_t e = animated_mesh_base; e < a.meshes.size(); ++e) {
-        a.meshes[e].tracks.insert(a.meshes[e].tracks.begin(), k);
-        const uint32_t mi = a.meshes[e].mesh - mesh_base;  // checked by prepare_animation
-        if (a.meshes[e].mesh >= mesh_base && mi < mesh_done.size()) mesh_done[mi] = 1;
-      }
-      for (uint32_t mi = mesh_base; mi < scene.meshes.size(); ++mi)
-        if (!mesh_done[mi - mesh_base]) a.meshes.push_back(AnimatedMesh{mi, {k}, {}, {}});
-      std::vector<char> light_done(scene.lights.size() - light_base, 0);
-      for (size_t e = animated_light_base; e < a.lights.size(); ++e) {
-        a.lights[e].tracks.insert(a.lights[e].tracks.begin(), k);
-        const uint32_t li = a.lights[e].light - light_base;
-        if (a.lights[e].light >= light_base && li < light_done.size()) light_done[li] = 1;
-      }
-      for (uint32_t li = light_base; li < scene.lights.size(); ++li) {
-        if (light_done[li - light_base]) continue;
-        AnimatedLight al;
-        al.light = li;
-        al.tracks = {k};
-        a.lights.push_back(std::move(al));
-      }
+      prepend_track(a.meshes, animated_mesh_base, &AnimatedMesh::mesh, mesh_base,
+                    uint32_t(scene.meshes.size()), k);
+      prepend_track(a.lights, animated_light_base, &AnimatedLight::light, light_base,
+                    uint32_t(scene.lights.size()), k);
     }
   }
   const json& lights = array_or_empty(top, "lights", path);

@@ -18,13 +18,6 @@ PathTracing::PathTracing() {
                    "average over frames while scene, camera and parameters stay the same");
 }
 
-bool PathTracing::State::operator==(const State& o) const {
-  return camera.origin == o.camera.origin && camera.forward == o.camera.forward &&
-         camera.right == o.camera.right && camera.up == o.camera.up && width == o.width &&
-         height == o.height && max_bounces == o.max_bounces && rr_start == o.rr_start &&
-         samples == o.samples && seed == o.seed;
-}
-
 void PathTracing::restart() {
   frames_ = 0;
   std::fill(sums_.begin(), sums_.end(), vec3(0.0f));

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "bounce/render/technique.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/technique.h"
 #include "bounce/techniques/path/path_tracer.h"
 
 namespace bounce {
@@ -26,7 +26,7 @@ class PathTracing final : public Technique {
     CameraRays camera;
     int width = 0, height = 0;
     int max_bounces = 0, rr_start = 0, samples = 0, seed = 0;
-    bool operator==(const State&) const;
+    bool operator==(const State&) const = default;
   };
   void restart();
 

@@ -37,9 +37,7 @@ bool TiledPhotonMapping::restart_needed(const FrameContext& c) const {
   if (scene_dirty_ || passes_ == 0 || !settings_.progressive) return true;
   if (!(settings_ == last_settings_)) return true;
   if (c.gbuffer.width != last_width_ || c.gbuffer.height != last_height_) return true;
-  const CameraRays& a = c.camera;
-  const CameraRays& b = last_camera_;
-  return a.origin != b.origin || a.forward != b.forward || a.right != b.right || a.up != b.up;
+  return !(c.camera == last_camera_);
 }
 
 vec3 TiledPhotonMapping::estimate_at(const GBuffer& g, int x, int y, float radius) const {
