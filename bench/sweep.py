@@ -118,8 +118,7 @@ def stage(bench_json, name):
 
 
 def one_bounce_args(paths, radius_pct):
-    return ["--photons", paths, "--radius", f"{radius_pct:g}%", "--bounces", "1",
-            "-p", "progressive=false"]
+    return ["--photons", paths, "--radius", f"{radius_pct:g}%", "--bounces", "1"]
 
 
 def write_atomic(path, data, mode="w"):
@@ -180,12 +179,11 @@ def run_grid(b, cfg, out):
 def run_default(b, cfg, out):
     """The multi-bounce default (one frame and converged) and direct light, against both refs."""
     print("default technique and direct light", flush=True)
-    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, ["-p", "progressive=false"],
-                out / "json" / "default.json")
+    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, [], out / "json" / "default.json")
     jd = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, ["-t", "direct"],
                  out / "json" / "direct.json")
     images = {
-        "tiled_1frame": ["--spp", "1", "--photons", "2000", "-p", "progressive=false"],
+        "tiled_1frame": ["--spp", "1", "--photons", "2000"],
         "tiled_converged": [],      # render's still defaults: 20,000 paths x 16 passes
         "direct": ["-t", "direct", "--spp", "1"],
     }
@@ -222,7 +220,7 @@ def run_complexity(b, cfg, out):
         scene = f"cubes:{n}"
         tris, bvh_mib, bvh_ms = b.info(scene)
         j = b.bench(scene, cfg.cubes_size, cfg.cubes_frames, min(cfg.warmup, 3),
-                    ["-p", "progressive=false"], out / "json" / f"cubes{n}.json")
+                    [], out / "json" / f"cubes{n}.json")
         row = {"cubes": n, "triangles": tris, "bvh_build_ms": bvh_ms, "bvh_mib": bvh_mib}
         for s in j["stages"] + [j["total"]]:
             row[s["name"] + "_ms"] = s["mean_ms"]

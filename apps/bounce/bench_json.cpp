@@ -27,8 +27,7 @@ nlohmann::json flicker_json(const TemporalRecord* t) {
           {"frames", t->flicker_frames},
           {"warmup_frames", t->flicker_warmup},
           {"at_rest", finite_or_null(t->flicker_at_rest)},
-          {"accumulation_off", finite_or_null(t->flicker_accumulation_off)},
-          {"params_turned_off", t->accumulation_params}};
+          {"accumulation_off", finite_or_null(t->flicker_accumulation_off)}};
 }
 
 nlohmann::json settle_json(const TemporalRecord* t) {
@@ -92,6 +91,7 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
       {"height", r.settings.height},
       {"light_samples", r.settings.light_samples},
       {"seed", r.settings.seed},
+      {"accumulate", r.settings.accumulate},
       {"frames", r.frames},
       {"warmup_frames", r.warmup},
       {"stages", stages},

@@ -17,8 +17,7 @@ struct TemporalRecord {
   int flicker_frames = 0;     // 0: flicker not measured
   int flicker_warmup = 0;
   double flicker_at_rest = 0.0, flicker_accumulation_off = 0.0;
-  std::vector<std::string> accumulation_params;  // technique bools turned off for the second
-  bool settle = false;                           // false: settle not measured
+  bool settle = false;  // false: settle not measured
   SettleOptions settle_options;
   SettleResult settle_result;
 };

@@ -24,16 +24,6 @@ std::string default_output(const std::string& scene) {
   return "out/" + scene_stem(scene) + ".png";
 }
 
-// A still image affords more photons per pass than a real-time frame: unless told otherwise,
-// photon techniques trace kStillPhotons paths per pass here (bench keeps their own default).
-constexpr const char* kStillPhotons = "20000";
-
-std::unique_ptr<Technique> make_still_technique(FrameOptions o) {
-  if (o.photons.empty() && make_technique(o.technique)->params().find("photons"))
-    o.photons = kStillPhotons;
-  return make_configured_technique(o);
-}
-
 void run_render(const RenderOptions& o) {
   const ThreadLimit limit(o.frame.threads);
   const std::string out = o.out.empty() ? default_output(o.frame.scene) : o.out;
@@ -41,21 +31,25 @@ void run_render(const RenderOptions& o) {
   const Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   const double load_ms = load_watch.elapsed_ms();
   auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_still_technique(o.frame));
+  FrameOptions frame_options = o.frame;
+  frame_options.still = true;  // a still affords more work per pass than a real-time frame
+  Renderer renderer(scene, *tracer, make_configured_technique(frame_options));
   FrameSettings settings = o.frame.settings();
+  // The passes are frames at rest: the pipeline averages them (techniques that accumulate
+  // themselves, like tiled's shrinking-radius passes, are not averaged again).
   settings.jitter = o.spp > 1;
+  settings.accumulate = true;
 
   StageStatistics stats;
-  Image sum(settings.width, settings.height);
   uint64_t primary = 0, shadow = 0;
+  const Frame* frame = nullptr;
   for (int k = 0; k < o.spp; ++k) {
-    const Frame& frame = renderer.render(scene.camera, settings);
-    sum += frame.color;
-    stats.add(frame.times);
-    primary += frame.primary_rays;
-    shadow += frame.shadow_rays;
+    frame = &renderer.render(scene.camera, settings);
+    stats.add(frame->times);
+    primary += frame->primary_rays;
+    shadow += frame->shadow_rays;
   }
-  const Image image = sum * (1.0f / float(o.spp));
+  const Image& image = frame->color;
 
   fmt::print(
       "{}: {} triangles, {} lights + {} area lights; loaded in {:.1f} ms, BVH built in "
@@ -65,6 +59,10 @@ void run_render(const RenderOptions& o) {
   fmt::print("technique {}, {}x{}, {} frame(s) averaged, {} light samples per frame\n",
              renderer.technique().name(), settings.width, settings.height, o.spp,
              settings.light_samples);
+  std::string params;
+  for (const Param& p : renderer.technique().params().all())
+    params += fmt::format("{}{}={}", params.empty() ? "" : " ", p.name, p.to_string());
+  if (!params.empty()) fmt::print("parameters: {}\n", params);
   print_stage_table(stats, false);
   fmt::print("rays: {} primary, {} shadow\n", primary, shadow);
 

@@ -2,13 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce::app {
 
@@ -72,16 +73,18 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_option("-j,--threads", o.threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  command.add_option("--photons", o.photons,
-                     "Photon paths per frame (photon techniques; render: 20000 unless given)");
-  command.add_option("--radius", o.radius,
-                     "Gather radius: scene units (0.05) or percent of the scene diagonal (3%)");
-  command.add_option("--bounces", o.bounces,
-                     "Photon bounces: -1 = until Russian roulette ends the path, 1 = the seed's");
-  command.add_option("--lowres", o.lowres, "Indirect light at 1/N of the width and height");
-  command.add_option("--tile", o.tile, "Screen tile size in pixels (tile gather)");
-  command.add_option("--gather", o.gather, "Density estimation: tiles or grid")
-      ->check(CLI::IsMember({"tiles", "grid"}));
+  // Each technique's own options; a flag two techniques declare is added once.
+  std::map<std::string, std::string> declared_by;
+  std::map<std::string, std::string> help;
+  for (const auto& name : technique_names())
+    for (const TechniqueOption& option : make_technique(name)->options()) {
+      std::string& who = declared_by[option.flag];
+      who += (who.empty() ? "" : ", ") + name;
+      if (!help.count(option.flag)) help[option.flag] = option.help;
+    }
+  for (const auto& [flag, techniques] : declared_by)
+    command.add_option("--" + flag, o.technique_options[flag],
+                       fmt::format("{} (technique {})", help[flag], techniques));
   command.add_option("-p,--param", o.params,
                      "Technique parameter NAME=VALUE (repeatable; listed below)");
   command.footer(technique_parameters_help());
@@ -91,6 +94,10 @@ std::string technique_parameters_help() {
   std::string text = "Technique parameters (--param NAME=VALUE):\n";
   for (const auto& name : technique_names()) {
     const auto technique = make_technique(name);
+    std::string flags;
+    for (const TechniqueOption& option : technique->options())
+      flags += (flags.empty() ? "" : ", ") + ("--" + option.flag);
+    if (!flags.empty()) text += fmt::format("  {} options: {}\n", name, flags);
     const auto& params = technique->params().all();
     if (params.empty()) text += "  " + name + ": none\n";
     for (const auto& p : params)
@@ -101,13 +108,13 @@ std::string technique_parameters_help() {
 }
 
 namespace {
-void apply_parameters(const FrameOptions& o, ParamSet& params);
+void apply_parameters(const FrameOptions& o, Technique& technique);
 }  // namespace
 
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& o) {
   auto technique = make_technique(o.technique);
   try {
-    apply_parameters(o, technique->params());
+    apply_parameters(o, *technique);
   } catch (const Error& e) {
     fail("technique '{}': {}", o.technique, e.what());
   }
@@ -115,27 +122,22 @@ std::unique_ptr<Technique> make_configured_technique(const FrameOptions& o) {
 }
 
 namespace {
-void apply_parameters(const FrameOptions& o, ParamSet& params) {
-  const auto shortcut = [&](const std::string& value, const std::string& name) {
-    if (!value.empty()) params.set(name, value);
-  };
-  shortcut(o.photons, "photons");
-  shortcut(o.bounces, "bounces");
-  shortcut(o.lowres, "lowres");
-  shortcut(o.tile, "tile");
-  if (!o.gather.empty()) params.set("gather", o.gather == "tiles" ? "0" : "1");
-  if (!o.radius.empty()) {
-    if (o.radius.back() == '%') {
-      // Percent of the diagonal, as the relative radius; "0" turns the absolute one off.
-      const std::string number = o.radius.substr(0, o.radius.size() - 1);
-      char* end = nullptr;
-      const double percent = std::strtod(number.c_str(), &end);
-      if (number.empty() || *end != '\0') fail("--radius: '{}' is not a percentage", o.radius);
-      params.set("radius_rel", fmt::format("{}", percent / 100.0));
-      params.set("radius", "0");
-    } else {
-      params.set("radius", o.radius);
+void apply_parameters(const FrameOptions& o, Technique& technique) {
+  ParamSet& params = technique.params();
+  if (o.still)
+    for (const auto& assignment : technique.still_defaults()) params.set_assignment(assignment);
+  const std::vector<TechniqueOption> declared = technique.options();
+  for (const auto& [flag, text] : o.technique_options) {
+    if (text.empty()) continue;
+    const auto it = std::find_if(declared.begin(), declared.end(),
+                                 [&](const TechniqueOption& d) { return d.flag == flag; });
+    if (it == declared.end()) {
+      std::string own;
+      for (const TechniqueOption& d : declared) own += (own.empty() ? "" : ", ") + ("--" + d.flag);
+      fail("--{} is not an option of this technique (its options: {})", flag,
+           own.empty() ? "none" : own);
     }
+    it->apply(params, text);
   }
   for (const auto& assignment : o.params) params.set_assignment(assignment);
 }

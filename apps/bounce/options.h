@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,10 @@ struct FrameOptions {
   int threads = 0;
   float at = 0.0f;  // animation time the scene is posed at, seconds
   std::vector<std::string> params;
-  // Photon-mapping shortcuts for --param (empty: the technique's default).
-  std::string photons, radius, bounces, lowres, tile, gather;
+  // The options techniques declare (Technique::options()), by flag: the text given, or empty.
+  std::map<std::string, std::string> technique_options;
+  // A still image: the technique's still_defaults() apply before the user's options.
+  bool still = false;
 
   FrameSettings settings() const;
 };
@@ -34,9 +37,10 @@ Scene load_scene_at(const std::string& spec, float at);
 // A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
 std::string scene_stem(const std::string& scene);
 
-// Lists every technique's parameters with their defaults and ranges (for --help).
+// Lists every technique's options and parameters with their defaults and ranges (for --help).
 std::string technique_parameters_help();
-// Creates the technique and applies --param assignments to it (throws Error on a bad one).
+// Creates the technique and applies its still defaults (for a still), its options and the --param
+// assignments, in that order (throws Error on a bad one, or an option of another technique).
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& options);
 
 // Command registration: each command lives in its own file.

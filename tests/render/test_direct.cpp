@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bounce/render/renderer.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {

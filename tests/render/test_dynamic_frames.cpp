@@ -7,6 +7,7 @@
 #include "bounce/core/color.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {
@@ -49,7 +50,7 @@ TEST(DynamicFrames, EveryTechniqueShowsAMovedLightInTheNextFrame) {
     const float before = mean_luminance(renderer.render(scene.camera, settings).color);
     renderer.scene_changed(lower_light(scene, 0.15f));
     const Frame& after = renderer.render(scene.camera, settings);
-    EXPECT_EQ(after.direct_frames, 1);  // averaging restarted
+    EXPECT_EQ(after.frames_averaged, 1);  // averaging restarted
     // The same frame from a pipeline built on the moved scene.
     auto fresh_tracer = make_embree_tracer(scene);
     Renderer fresh(scene, *fresh_tracer, make_technique(name));
@@ -112,14 +113,15 @@ TEST(DynamicFrames, DirectLightAveragesAtRestAndRestartsOnAChange) {
   settings.accumulate = true;
   settings.jitter = true;
   // Averaging N one-sample frames removes noise: the averaged image is nearer a 64-sample one.
-  for (int i = 1; i <= 16; ++i) EXPECT_EQ(renderer.render(scene.camera, settings).direct_frames, i);
+  for (int i = 1; i <= 16; ++i)
+    EXPECT_EQ(renderer.render(scene.camera, settings).frames_averaged, i);
   const Image averaged = renderer.render(scene.camera, settings).direct;
   Camera moved = scene.camera;
   moved.position.x += 0.01f;
-  EXPECT_EQ(renderer.render(moved, settings).direct_frames, 1);
-  EXPECT_EQ(renderer.render(moved, settings).direct_frames, 2);
+  EXPECT_EQ(renderer.render(moved, settings).frames_averaged, 1);
+  EXPECT_EQ(renderer.render(moved, settings).frames_averaged, 2);
   renderer.scene_changed(SceneChange{{}, true, false});
-  EXPECT_EQ(renderer.render(moved, settings).direct_frames, 1);
+  EXPECT_EQ(renderer.render(moved, settings).frames_averaged, 1);
 
   auto reference_tracer = make_embree_tracer(scene);
   FrameSettings many = small_frame();

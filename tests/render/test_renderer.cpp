@@ -4,6 +4,7 @@
 #include "bounce/core/parallel.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {
@@ -36,8 +37,8 @@ TEST(Renderer, TimesEveryStageAndCountsRays) {
   const Frame& f = renderer.render(scene.camera, settings);
   std::vector<std::string> names;
   for (const auto& s : f.times.stages()) names.push_back(s.name);
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"scene", "gbuffer", "direct", "composite", "tonemap"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"scene", "prepare", "gbuffer", "direct", "composite",
+                                             "tonemap"}));
   EXPECT_EQ(f.primary_rays, 16u * 8u);
   // At most two shadow rays per pixel (one area light, two samples), some below its horizon.
   EXPECT_GT(f.shadow_rays, 0u);

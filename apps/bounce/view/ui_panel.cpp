@@ -8,13 +8,15 @@
 
 #include "bounce/core/error.h"
 #include "bounce/render/technique.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce::app {
 
 namespace {
 
 // The technique's parameters, each as the widget its kind calls for. Widgets write the values
-// in place; techniques compare their parameters each frame and restart on a change.
+// in place; the Renderer compares the parameters each frame and reports a change to the technique
+// (and to the resolution scaler, as motion).
 void technique_section(ViewSession& session) {
   const std::vector<std::string> names = technique_names();
   const std::string current = session.technique_name();
@@ -145,7 +147,7 @@ void draw_panel(ViewSession& session, PanelState& state) {
   ImGui::Text("%s: %zu triangles", scene.source.c_str(), scene.triangle_count());
   ImGui::Text("%dx%d internal, %s", f.gbuffer.width, f.gbuffer.height,
               session.moving() ? "moving" : "at rest");
-  ImGui::Text("direct light: %d frame(s) averaged", f.direct_frames);
+  ImGui::Text("%d frame(s) averaged at rest", f.frames_averaged);
 
   if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) timing_section(session);
   if (ImGui::CollapsingHeader("technique", ImGuiTreeNodeFlags_DefaultOpen)) {

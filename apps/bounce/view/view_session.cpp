@@ -7,6 +7,7 @@
 #include "bounce/render/technique.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_edit.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce::app {
 
@@ -41,7 +42,6 @@ void ViewSession::set_technique(const std::string& name) {
   if (name == technique_name_) return;
   renderer_->set_technique(make_technique(name));  // throws Error for an unknown name
   technique_name_ = name;
-  settings_changed_ = true;
 }
 
 void ViewSession::set_param(const std::string& name, const std::string& value) {
@@ -50,7 +50,6 @@ void ViewSession::set_param(const std::string& name, const std::string& value) {
   } catch (const Error& e) {
     fail("technique '{}': {}", technique_name_, e.what());
   }
-  settings_changed_ = true;
 }
 
 void ViewSession::lights_changed() {
@@ -116,19 +115,18 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
   place_flashlight();
   const Camera camera = camera_.camera();
 
-  moving_ = first_frame_ || camera != last_camera_ || pending_.any() || settings_changed_;
-  first_frame_ = false;
-  last_camera_ = camera;
-  settings_changed_ = false;
   if (pending_.any()) renderer_->scene_changed(pending_);
   pending_ = SceneChange{};
 
-  const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
+  // The Renderer tells what changed (scene edits, camera, parameters, a new technique); the
+  // size is left out because the scaler chooses it from whether anything moves.
   FrameSettings settings = options_.frame.settings();
-  settings.width = std::max(1, int(std::lround(out_w * scale)));
-  settings.height = std::max(1, int(std::lround(out_h * scale)));
   settings.exposure_ev = exposure_;
   settings.accumulate = true;
+  moving_ = renderer_->next_change(camera, settings, true).any();
+  const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
+  settings.width = std::max(1, int(std::lround(out_w * scale)));
+  settings.height = std::max(1, int(std::lround(out_h * scale)));
   settings.jitter = !moving_;  // at rest, jittered frames average into an antialiased image
   frame_ = &renderer_->render(camera, settings);
 

@@ -83,12 +83,9 @@ class ViewSession {
   const Frame* frame_ = nullptr;
 
   FlyCamera camera_;
-  Camera last_camera_{};
-  bool first_frame_ = true;
   std::optional<size_t> flashlight_index_;
   FlashlightSettings flashlight_settings_;
   SceneChange pending_;
-  bool settings_changed_ = false;
 
   float exposure_ = 0.0f;
   bool playing_ = false;

@@ -29,23 +29,11 @@ bool has_movable_light(const Scene& scene) {
   return !scene.area_lights.empty();
 }
 
-std::vector<std::string> disable_accumulation(ParamSet& params) {
-  std::vector<std::string> names;
-  for (const char* name : {"progressive", "accumulate"}) {
-    const Param* p = params.find(name);
-    if (!p || p->kind != Param::Kind::kBool) continue;
-    params.set(name, "false");
-    names.emplace_back(name);
-  }
-  return names;
-}
-
 FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
                               FrameSettings settings, int warmup, int frames, bool accumulate) {
   if (frames < 1) fail("flicker needs at least one frame (got {})", frames);
   FlickerResult result;
   std::unique_ptr<Technique> technique = make();
-  if (!accumulate) result.turned_off = disable_accumulation(technique->params());
   settings.accumulate = accumulate;
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));

@@ -26,22 +26,16 @@ SceneChange move_first_light(Scene& scene, vec3 offset, std::string* moved = nul
 // Whether move_first_light has a light to move.
 bool has_movable_light(const Scene& scene);
 
-// Turns off a technique's own accumulation over frames: every bool parameter named
-// "progressive" or "accumulate". Returns the names it turned off.
-std::vector<std::string> disable_accumulation(ParamSet& params);
-
 using TechniqueFactory = std::function<std::unique_ptr<Technique>()>;
 
 // Flicker (temporal_metrics.h) of the linear colour of `frames` frames of the static scene from
-// its own camera, after `warmup` frames that are not measured. accumulate: at rest as a user
-// sees it (FrameSettings::accumulate on: direct light averaged; the technique as `make` gives
-// it). Otherwise FrameSettings::accumulate off and disable_accumulation() on the technique, as
-// while the camera or the scene moves. `settings.jitter` is used as given.
+// its own camera, after `warmup` frames that are not measured, with FrameSettings::accumulate as
+// given: on, at rest as a user sees it (frames average into a converged image); off, every frame
+// as while the camera or the scene moves. `settings.jitter` is used as given.
 struct FlickerResult {
   double flicker = 0.0;
-  double mean_deviation = 0.0;          // the numerator
-  double mean_value = 0.0;              // the denominator
-  std::vector<std::string> turned_off;  // the technique parameters disable_accumulation() set
+  double mean_deviation = 0.0;  // the numerator
+  double mean_value = 0.0;      // the denominator
 };
 FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
                               FrameSettings settings, int warmup, int frames, bool accumulate);

@@ -21,13 +21,17 @@ void GBuffer::resize(int w, int h) {
   emission.resize(n);
   depth.resize(n);
   primitive.resize(n);
+  mesh.resize(n);
+  barycentric.resize(n);
+  motion.assign(n, vec2(0.0f));
 }
 
 static void write_gbuffer_pixel(const Scene& scene, const CameraRays& camera, const Ray& ray,
                                 const Hit& hit, size_t i, GBuffer& g) {
   const SphereLightHit light = intersect_sphere_lights(scene, ray.origin, ray.direction, hit.t);
   if (!hit.valid() || light.light >= 0) {
-    g.primitive[i] = kNoPrimitive;
+    g.primitive[i] = g.mesh[i] = kNoPrimitive;
+    g.barycentric[i] = vec2(0.0f);
     g.depth[i] = std::numeric_limits<float>::infinity();
     g.position[i] = g.normal[i] = g.geometric_normal[i] = vec3(0.0f);
     g.albedo[i] = g.f0[i] = g.emission[i] = vec3(0.0f);
@@ -41,6 +45,8 @@ static void write_gbuffer_pixel(const Scene& scene, const CameraRays& camera, co
   }
   const SurfaceHit s = surface_at(scene, hit, ray.direction);
   g.primitive[i] = scene.triangle_offsets[hit.mesh] + hit.triangle;
+  g.mesh[i] = hit.mesh;
+  g.barycentric[i] = hit.barycentric;
   g.position[i] = s.position;
   g.normal[i] = s.normal;
   g.geometric_normal[i] = s.geometric_normal;

@@ -25,6 +25,13 @@ struct GBuffer {
   std::vector<vec3> emission;
   std::vector<float> depth;         // distance along the view axis; infinity on a miss
   std::vector<uint32_t> primitive;  // global triangle id (Scene::triangle_offsets), or kNoPrimitive
+  std::vector<uint32_t> mesh;       // the object: Scene::meshes index, or kNoPrimitive
+  // Weights of the triangle's vertices 1 and 2 at the hit (vertex 0 has 1 - x - y): what
+  // interpolates per-vertex data such as light stored at mesh vertices.
+  std::vector<vec2> barycentric;
+  // Screen-space motion in pixels from where this surface point was in the previous frame to
+  // where it is now; (0, 0) until temporal reuse fills it (room reserved for it).
+  std::vector<vec2> motion;
 
   void resize(int w, int h);
   size_t size() const { return size_t(width) * height; }

@@ -5,17 +5,16 @@
 #include "bounce/core/qmc.h"
 #include "bounce/core/tonemap.h"
 #include "bounce/render/direct.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 
 Renderer::Renderer(const Scene& scene, Tracer& tracer, std::unique_ptr<Technique> technique)
-    : scene_(scene), tracer_(tracer), technique_(std::move(technique)) {
-  technique_->scene_changed(scene_, tracer_);
-}
+    : scene_(scene), tracer_(tracer), technique_(std::move(technique)) {}
 
 void Renderer::set_technique(std::unique_ptr<Technique> technique) {
   technique_ = std::move(technique);
-  technique_->scene_changed(scene_, tracer_);
+  pending_.merge(SceneChange::all());
 }
 
 void Renderer::scene_changed(const SceneChange& change) {
@@ -29,36 +28,41 @@ void Renderer::animate(Scene& scene, float t) {
   pose_ms_ += watch.elapsed_ms();
 }
 
-void Renderer::update_scene() {
-  if (!pending_.any()) return;
-  if (pending_.geometry()) tracer_.update(scene_, pending_.moved_meshes);
-  technique_->scene_changed(scene_, tracer_);
-  direct_frames_ = 0;
-  pending_ = SceneChange{};
+std::vector<std::string> Renderer::parameter_state(const FrameSettings& settings) const {
+  std::vector<std::string> state;
+  for (const Param& p : technique_->params().all()) state.push_back(p.to_string());
+  state.push_back(std::to_string(settings.light_samples));
+  state.push_back(std::to_string(settings.seed));
+  state.push_back(settings.accumulate ? "accumulate" : "per-frame");
+  return state;
 }
 
-void Renderer::average_direct(const CameraRays& rays, const FrameSettings& settings) {
-  Image& direct = frame_.direct;
-  const bool same = rays == last_rays_ && settings.light_samples == last_light_samples_;
-  last_rays_ = rays;
-  last_light_samples_ = settings.light_samples;
-  if (!settings.accumulate || !same || direct_frames_ == 0) {
-    direct_frames_ = settings.accumulate ? 1 : 0;
-    if (settings.accumulate) direct_sum_ = direct;
-    frame_.direct_frames = 1;
+SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& settings,
+                                  bool ignore_size) const {
+  SceneChange change = pending_;
+  const bool resized =
+      !ignore_size && (settings.width != last_width_ || settings.height != last_height_);
+  change.camera |= resized || !(camera == last_camera_);
+  change.parameters |= parameter_state(settings) != last_parameters_;
+  return change;
+}
+
+void Renderer::RunningAverage::add(Image& image, bool rest) {
+  if (!rest || frames == 0) {
+    frames = 1;
+    sum = image;
     return;
   }
-  ++direct_frames_;
-  const float inv = 1.0f / float(direct_frames_);
+  ++frames;
+  const float inv = 1.0f / float(frames);
   parallel_for(
-      direct.pixel_count(),
+      image.pixel_count(),
       [&](size_t i) {
-        vec3& sum = direct_sum_.pixels()[i];
-        sum += direct.pixels()[i];
-        direct.pixels()[i] = sum * inv;
+        vec3& s = sum.pixels()[i];
+        s += image.pixels()[i];
+        image.pixels()[i] = s * inv;
       },
       4096);
-  frame_.direct_frames = direct_frames_;
 }
 
 const Frame& Renderer::render(const Camera& camera, const FrameSettings& settings) {
@@ -68,12 +72,26 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     fail("light samples must be positive (got {})", settings.light_samples);
   Frame& f = frame_;
   f.times.clear();
+  f.change = next_change(camera, settings);
+  pending_ = SceneChange{};
+  last_camera_ = camera;
+  last_width_ = settings.width;
+  last_height_ = settings.height;
+  last_parameters_ = parameter_state(settings);
+  const SceneChange& change = f.change;
+  const bool rest = settings.accumulate && !change.any();
   {
     ScopedStage stage(f.times, "scene");
-    update_scene();
+    if (!change.moved_meshes.empty()) tracer_.update(scene_, change.moved_meshes);
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;
+  f.technique = TechniqueCounters{};
+  {
+    ScopedStage stage(f.times, "prepare");
+    technique_->prepare(PrepareContext{scene_, tracer_, change, settings.accumulate, frame_index_,
+                                       f.times, f.technique});
+  }
   const int w = settings.width, h = settings.height;
   const CameraRays rays = CameraRays::from(camera, w, h);
   // Jittered frames walk a Halton (2, 3) pattern over the pixel, so their average is the
@@ -90,18 +108,20 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
     f.shadow_rays = compute_direct(scene_, tracer_, f.gbuffer, rays.origin, direct, f.direct);
-    average_direct(rays, settings);
+    direct_average_.add(f.direct, rest);
   }
+  f.frames_averaged = direct_average_.frames;
   const bool indirect = technique_->has_indirect();
   if (indirect) {
     ScopedStage stage(f.times, "indirect");
     f.indirect = Image(w, h);
-    f.technique = TechniqueCounters{};
-    FrameContext context{scene_, tracer_, f.gbuffer, rays, frame_index_, f.times, f.technique};
+    const FrameContext context{scene_,       tracer_, f.gbuffer,  rays, change, settings.accumulate,
+                               frame_index_, f.times, f.technique};
     technique_->indirect(context, f.indirect);
+    if (technique_->indirect_history() == IndirectHistory::kPerFrame)
+      indirect_average_.add(f.indirect, rest);
   } else {
     f.indirect = Image();
-    f.technique = TechniqueCounters{};
   }
   {
     ScopedStage stage(f.times, "composite");
@@ -129,9 +149,9 @@ Image render_image(const Scene& scene, const std::string& technique, const Frame
   Renderer renderer(scene, *tracer, make_technique(technique));
   FrameSettings s = settings;
   s.jitter = spp > 1;
-  Image sum(s.width, s.height);
-  for (int k = 0; k < spp; ++k) sum += renderer.render(scene.camera, s).color;
-  return sum * (1.0f / float(spp));
+  s.accumulate = spp > 1;
+  for (int k = 0; k + 1 < spp; ++k) renderer.render(scene.camera, s);
+  return renderer.render(scene.camera, s).color;
 }
 
 }  // namespace bounce

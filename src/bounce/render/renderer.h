@@ -1,5 +1,7 @@
-// The frame pipeline: scene update -> G-buffer (primary rays) -> direct light (shadow rays) ->
-// technique.indirect -> composite -> tone map. Every stage is timed under its own name.
+// The frame pipeline: scene update -> technique.prepare -> G-buffer (primary rays) -> direct light
+// (shadow rays) -> technique.indirect -> composite -> tone map. Every stage is timed under its
+// own name. The Renderer owns the one notion of what changed since the last frame (SceneChange)
+// and, at rest with accumulation on, the averaging of frames into a converged image.
 #pragma once
 
 #include <cstdint>
@@ -23,23 +25,28 @@ struct FrameSettings {
   int light_samples = 16;    // stratified samples per area light per pixel per frame
   float exposure_ev = 0.0f;  // tone-map exposure in stops
   bool jitter = false;       // sub-pixel jitter of primary rays (for accumulation)
-  // At rest (same camera, size and scene as the last frame) average direct light over frames;
-  // with jitter this also antialiases. Techniques accumulate their own indirect light.
+  // Accumulation at rest: while nothing changes (SceneChange::any() false), frames average into
+  // a converged image: direct light and per-frame indirect light by the Renderer, accumulating
+  // techniques (IndirectHistory::kAccumulated) by themselves. With jitter this also antialiases.
+  // Off, every frame is what a moving camera would show.
   bool accumulate = false;
   uint32_t seed = 0;  // decorrelates sample patterns between runs
+
+  bool operator==(const FrameSettings&) const = default;
 };
 
 struct Frame {
   GBuffer gbuffer;
   Image direct;              // direct light plus emitters seen directly (averaged at rest)
-  int direct_frames = 1;     // frames averaged into `direct`
-  Image indirect;            // the technique's indirect radiance
+  Image indirect;            // the technique's indirect radiance (averaged at rest)
   Image color;               // linear composite
   std::vector<uint8_t> ldr;  // tone-mapped sRGB, 3 bytes per pixel
+  int frames_averaged = 1;   // frames that went into this one at rest (1 after any change)
+  SceneChange change;        // what changed since the previous frame
   StageTimes times;
   uint64_t primary_rays = 0;
   uint64_t shadow_rays = 0;
-  TechniqueCounters technique;  // photons and rays of the indirect stage
+  TechniqueCounters technique;  // photons and rays of the prepare and indirect stages
 };
 
 class Renderer {
@@ -49,34 +56,46 @@ class Renderer {
   // Swaps the technique (a viewer's technique switch); it starts from the current scene.
   void set_technique(std::unique_ptr<Technique> technique);
   // Says the scene was edited or animated since the last frame: the next frame refits the
-  // tracer for moved meshes, restarts the technique's accumulated state and direct averaging.
+  // tracer for moved meshes and hands the change to the technique.
   void scene_changed(const SceneChange& change);
   // Poses `scene`, which must be the scene this renderer draws, at animation time t (seconds)
   // and passes the change on; the next frame's "scene" stage includes this work and the refit.
   void animate(Scene& scene, float t);
+  // What the next render(camera, settings) would see as changed: scene edits reported so far,
+  // the camera, the image size (unless ignore_size) and parameters. A viewer asks this to know
+  // whether it is at rest before it chooses the frame's size.
+  SceneChange next_change(const Camera& camera, const FrameSettings& settings,
+                          bool ignore_size = false) const;
   // Renders the next frame from `camera`; the returned frame stays valid until the next call.
   const Frame& render(const Camera& camera, const FrameSettings& settings);
   uint32_t frame_index() const { return frame_index_; }
 
  private:
-  void update_scene();
-  void average_direct(const CameraRays& rays, const FrameSettings& settings);
+  // A frame's parameters as text: the technique's and the frame settings that change images.
+  std::vector<std::string> parameter_state(const FrameSettings& settings) const;
+  // Averages `image` with the frames before it while at rest; restarts when `rest` is false.
+  struct RunningAverage {
+    Image sum;
+    int frames = 0;
+    void add(Image& image, bool rest);
+  };
 
   const Scene& scene_;
   Tracer& tracer_;
   std::unique_ptr<Technique> technique_;
   Frame frame_;
   uint32_t frame_index_ = 0;
-  SceneChange pending_;
-  double pose_ms_ = 0.0;  // animate() time since the last frame
-  // Direct-light averaging at rest.
-  Image direct_sum_;
-  int direct_frames_ = 0;
-  CameraRays last_rays_{};
-  int last_light_samples_ = 0;
+  SceneChange pending_ = SceneChange::all();  // scene edits since the last frame
+  double pose_ms_ = 0.0;                      // animate() time since the last frame
+  // What the last frame was rendered with, to tell what changed.
+  Camera last_camera_{};
+  int last_width_ = 0, last_height_ = 0;
+  std::vector<std::string> last_parameters_;
+  RunningAverage direct_average_, indirect_average_;
 };
 
-// Renders `spp` jittered frames of the scene's own camera and returns their linear average.
+// Renders `spp` jittered frames of the scene's own camera, accumulating at rest, and returns the
+// last (converged) frame's linear colour.
 Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
                    int spp = 1);
 

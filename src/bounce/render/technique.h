@@ -1,9 +1,17 @@
-// The interface a global-illumination technique implements to plug into the frame pipeline.
-// A technique sees the scene, the tracer and the G-buffer, and writes indirect radiance; it owns
-// its data (photon maps, hit buffers) and times its own sub-stages.
+// The contract between the frame pipeline and a global-illumination technique.
+//
+// Each frame the Renderer works out what changed since the last one (a SceneChange) and calls
+//   prepare(PrepareContext)  - work that depends on the scene, not the pixels (photon maps,
+//                              refined meshes, hit buffers, refits), timed as "prepare";
+//   indirect(FrameContext)   - indirect radiance for every G-buffer pixel, timed as "indirect".
+// A technique owns its data, names its sub-stages ("prepare/...", "indirect/..."), declares its
+// parameters (ParamSet, shown by the CLI's --help and the viewer's panel) and its command-line
+// options. Accumulation over frames is the pipeline's setting (FrameSettings::accumulate): a
+// technique continues its running average only when the context says it may.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +22,7 @@
 #include "bounce/render/params.h"
 #include "bounce/scene/camera.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_change.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -25,15 +34,50 @@ struct TechniqueCounters {
   uint64_t rays = 0;
 };
 
+struct PrepareContext {
+  const Scene& scene;
+  const Tracer& tracer;
+  const SceneChange& change;  // since the last frame (SceneChange::all() on the first)
+  bool accumulate;            // FrameSettings::accumulate
+  uint32_t frame_index;       // counts frames since the pipeline started
+  StageTimes& times;          // sub-stages go here, named "prepare/..."
+  TechniqueCounters& counters;
+
+  // Whether state accumulated over earlier frames may go on: accumulation is on and nothing
+  // that the technique's estimate depends on changed.
+  bool continue_accumulation() const { return accumulate && !change.any(); }
+};
+
 struct FrameContext {
   const Scene& scene;
   const Tracer& tracer;
   const GBuffer& gbuffer;
   const CameraRays& camera;
-  uint32_t frame_index;  // counts frames since the pipeline started
-  StageTimes& times;     // a technique adds its sub-stages here, named "indirect/..."
+  const SceneChange& change;
+  bool accumulate;
+  uint32_t frame_index;
+  StageTimes& times;  // sub-stages go here, named "indirect/..."
   TechniqueCounters& counters;
+
+  bool continue_accumulation() const { return accumulate && !change.any(); }
 };
+
+// How a technique's indirect image relates to the frames before it.
+enum class IndirectHistory {
+  kPerFrame,     // a fresh estimate every frame: the Renderer averages it at rest
+  kAccumulated,  // already the technique's own running average at rest: not averaged again
+};
+
+// A command-line option a technique declares (e.g. tiled's --photons): `flag` without dashes;
+// `apply` sets the technique's parameters from the option's text (throws Error when bad).
+struct TechniqueOption {
+  std::string flag;
+  std::string help;
+  std::function<void(ParamSet&, const std::string&)> apply;
+};
+// An option whose value goes straight to parameter `param`.
+TechniqueOption param_option(const std::string& flag, const std::string& param,
+                             const std::string& help);
 
 class Technique {
  public:
@@ -41,18 +85,21 @@ class Technique {
   virtual std::string name() const = 0;
   // Whether this technique computes indirect light at all (the "direct" technique does not).
   virtual bool has_indirect() const { return true; }
+  virtual IndirectHistory indirect_history() const { return IndirectHistory::kPerFrame; }
   ParamSet& params() { return params_; }
-  // Called when the scene or its lights changed: accumulated state must restart.
-  virtual void scene_changed(const Scene& scene, const Tracer& tracer) {}
+  const ParamSet& params() const { return params_; }
+  // Command-line options beyond --param NAME=VALUE.
+  virtual std::vector<TechniqueOption> options() const { return {}; }
+  // Parameter assignments ("name=value") a still image affords over a real-time frame (render
+  // applies them unless the user sets the parameter).
+  virtual std::vector<std::string> still_defaults() const { return {}; }
+
+  virtual void prepare(const PrepareContext& context) {}
   // Writes indirect radiance for every G-buffer pixel into `out` (already sized and zeroed).
   virtual void indirect(const FrameContext& context, Image& out) = 0;
 
  protected:
   ParamSet params_;
 };
-
-// Creates a technique by name; throws Error listing the known names for an unknown one.
-std::unique_ptr<Technique> make_technique(const std::string& name);
-std::vector<std::string> technique_names();
 
 }  // namespace bounce

@@ -3,9 +3,9 @@
 #include <utility>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
 #include "bounce/techniques/direct/direct_only.h"
 #include "bounce/techniques/path/path_technique.h"
+#include "bounce/techniques/registry.h"
 #include "bounce/techniques/tiled/tiled.h"
 
 namespace bounce {

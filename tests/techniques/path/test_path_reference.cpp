@@ -8,6 +8,7 @@
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/path/reference.h"
+#include "bounce/techniques/registry.h"
 #include "path_test_util.h"
 
 namespace bounce {
@@ -25,7 +26,7 @@ Image reference_image(const Scene& s, int spp, uint32_t seed, int max_bounces = 
   return render_reference(s, *tracer, s.camera, settings).image;
 }
 
-// Direct stage plus the technique's indirect term, averaged over jittered frames.
+// Direct stage plus the technique's indirect term, averaged over jittered frames at rest.
 Image pipeline_image(const Scene& s, int frames, uint32_t seed, int max_bounces = -1) {
   auto tracer = make_embree_tracer(s);
   auto technique = make_technique("path");
@@ -36,14 +37,12 @@ Image pipeline_image(const Scene& s, int frames, uint32_t seed, int max_bounces 
   settings.width = settings.height = kSize;
   settings.light_samples = 4;
   settings.jitter = true;
+  settings.accumulate = true;
   settings.seed = seed;
-  Image direct(kSize, kSize), indirect;
-  for (int k = 0; k < frames; ++k) {
-    const Frame& f = renderer.render(s.camera, settings);
-    direct += f.direct;
-    indirect = f.indirect;  // already the average over the frames
-  }
-  return direct * (1.0f / frames) + indirect;
+  for (int k = 0; k + 1 < frames; ++k) renderer.render(s.camera, settings);
+  const Frame& last = renderer.render(s.camera, settings);
+  EXPECT_EQ(last.frames_averaged, frames);
+  return last.color;
 }
 
 // Mean of each quadrant and of the whole image, per channel, over independent runs.
@@ -183,6 +182,7 @@ TEST(PathTechnique, AccumulatesUntilTheCameraOrAParameterChanges) {
   Renderer renderer(s, *tracer, std::move(owned));
   FrameSettings settings;
   settings.width = settings.height = 8;
+  settings.accumulate = true;
   renderer.render(s.camera, settings);
   renderer.render(s.camera, settings);
   EXPECT_EQ(path.accumulated_frames(), 2);
@@ -190,12 +190,16 @@ TEST(PathTechnique, AccumulatesUntilTheCameraOrAParameterChanges) {
   moved.position.x += 0.01f;
   renderer.render(moved, settings);
   EXPECT_EQ(path.accumulated_frames(), 1);
+  renderer.render(moved, settings);
+  EXPECT_EQ(path.accumulated_frames(), 2);
   path.params().set("max_bounces", "2");
   renderer.render(moved, settings);
   EXPECT_EQ(path.accumulated_frames(), 1);
-  path.scene_changed(s, *tracer);
-  EXPECT_EQ(path.accumulated_frames(), 0);
-  path.params().set("accumulate", "false");
+  renderer.render(moved, settings);
+  renderer.scene_changed(SceneChange{.lights = true});
+  renderer.render(moved, settings);
+  EXPECT_EQ(path.accumulated_frames(), 1);
+  settings.accumulate = false;  // every frame a fresh estimate
   renderer.render(moved, settings);
   renderer.render(moved, settings);
   EXPECT_EQ(path.accumulated_frames(), 1);

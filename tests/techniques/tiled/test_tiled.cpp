@@ -241,6 +241,7 @@ Image render_tiled(const Scene& scene, int frames, int threads, int gather = 1) 
   settings.width = 40;
   settings.height = 32;
   settings.light_samples = 2;
+  settings.accumulate = true;  // passes average at rest
   Image last;
   for (int k = 0; k < frames; ++k) last = renderer.render(scene.camera, settings).indirect;
   return last;

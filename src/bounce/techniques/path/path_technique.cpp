@@ -14,30 +14,20 @@ PathTracing::PathTracing() {
                   "path vertex from which Russian roulette may end a path");
   params_.add_int("samples", &samples_, 1, 4096, "paths per pixel per frame");
   params_.add_int("seed", &seed_, 0, 1 << 30, "seed of the paths' random numbers");
-  params_.add_bool("accumulate", &accumulate_,
-                   "average over frames while scene, camera and parameters stay the same");
 }
 
-void PathTracing::restart() {
-  frames_ = 0;
-  std::fill(sums_.begin(), sums_.end(), vec3(0.0f));
-}
-
-void PathTracing::scene_changed(const Scene& scene, const Tracer& tracer) {
-  lights_ = LightPicker::build(scene);
-  prepared_ = true;
-  restart();
+void PathTracing::prepare(const PrepareContext& context) {
+  const SceneChange& c = context.change;
+  if (c.geometry() || c.lights || c.materials) lights_ = LightPicker::build(context.scene);
 }
 
 void PathTracing::indirect(const FrameContext& context, Image& out) {
-  if (!prepared_) scene_changed(context.scene, context.tracer);
   const GBuffer& g = context.gbuffer;
-  const State state{context.camera, g.width, g.height, max_bounces_, rr_start_, samples_, seed_};
-  if (!(state == state_) || !accumulate_) {
-    state_ = state;
+  if (!context.continue_accumulation() || sums_.size() != g.size()) {
     sums_.assign(g.size(), vec3(0.0f));
     frames_ = 0;
   }
+  const bool accumulate = context.accumulate;
 
   const PathScene ps{context.scene, context.tracer, lights_};
   PathSettings settings;
@@ -46,7 +36,7 @@ void PathTracing::indirect(const FrameContext& context, Image& out) {
   settings.rr_start = rr_start_;
   // Without accumulation every frame still draws new paths.
   const uint32_t first =
-      uint32_t(accumulate_ ? frames_ : int(context.frame_index)) * uint32_t(samples_);
+      uint32_t(accumulate ? frames_ : int(context.frame_index)) * uint32_t(samples_);
   const vec3 eye = context.camera.origin;
   const float inv = 1.0f / float((frames_ + 1) * samples_);
   std::atomic<uint64_t> rays{0};

@@ -1,7 +1,11 @@
 #include "bounce/techniques/tiled/tiled.h"
 
-#include <cmath>
+#include <fmt/format.h>
 
+#include <cmath>
+#include <cstdlib>
+
+#include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/render/photon_clearance.h"
 #include "bounce/render/photon_gather.h"
@@ -20,8 +24,7 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_int("gather", &s.gather, 0, 1, "density estimation: 0 screen tiles, 1 hash grid");
   params_.add_float("slab", &s.slab, 0.0, 1.0, "tangent slab half-thickness / radius");
   params_.add_bool("leak_guard", &s.leak_guard, "clearance rays stop light through thin walls");
-  params_.add_bool("progressive", &s.progressive, "at rest, add photons and shrink the radius");
-  params_.add_float("alpha", &s.alpha, 0.01, 1.0, "progressive radius reduction");
+  params_.add_float("alpha", &s.alpha, 0.01, 1.0, "radius reduction of passes at rest");
   params_.add_float("edge_normal", &s.edge_normal, -1.0, 1.0, "edge test: normal agreement");
   params_.add_float("edge_distance", &s.edge_distance, 0.0, 1.0,
                     "edge test: position gap / scene diagonal");
@@ -29,15 +32,36 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_int("seed", &s.seed, 0, 1 << 30, "photon sample seed");
 }
 
-void TiledPhotonMapping::scene_changed(const Scene& scene, const Tracer& tracer) {
-  scene_dirty_ = true;
+std::vector<TechniqueOption> TiledPhotonMapping::options() const {
+  return {
+      param_option("photons", "photons",
+                   "Photon paths per frame (render: 20000 per pass unless given)"),
+      {"radius", "Gather radius: scene units (0.05) or percent of the scene diagonal (3%)",
+       [](ParamSet& params, const std::string& text) {
+         if (text.empty() || text.back() != '%') return params.set("radius", text);
+         // Percent of the diagonal, as the relative radius; the absolute one is turned off.
+         const std::string number = text.substr(0, text.size() - 1);
+         char* end = nullptr;
+         const double percent = std::strtod(number.c_str(), &end);
+         if (number.empty() || *end != '\0') fail("--radius: '{}' is not a percentage", text);
+         params.set("radius_rel", fmt::format("{}", percent / 100.0));
+         params.set("radius", "0");
+       }},
+      param_option("bounces", "bounces",
+                   "Photon bounces: -1 = until Russian roulette ends the path, 1 = the seed's"),
+      param_option("lowres", "lowres", "Indirect light at 1/N of the width and height"),
+      param_option("tile", "tile", "Screen tile size in pixels (tile gather)"),
+      {"gather", "Density estimation: tiles or grid",
+       [](ParamSet& params, const std::string& text) {
+         if (text != "tiles" && text != "grid")
+           fail("--gather: '{}' is neither 'tiles' nor 'grid'", text);
+         params.set("gather", text == "tiles" ? "0" : "1");
+       }},
+  };
 }
 
-bool TiledPhotonMapping::restart_needed(const FrameContext& c) const {
-  if (scene_dirty_ || passes_ == 0 || !settings_.progressive) return true;
-  if (!(settings_ == last_settings_)) return true;
-  if (c.gbuffer.width != last_width_ || c.gbuffer.height != last_height_) return true;
-  return !(c.camera == last_camera_);
+std::vector<std::string> TiledPhotonMapping::still_defaults() const {
+  return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
 }
 
 vec3 TiledPhotonMapping::estimate_at(const GBuffer& g, int x, int y, float radius) const {
@@ -147,15 +171,11 @@ void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& ou
 void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
   diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
   const float base = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
-  if (restart_needed(c)) {
+  if (!c.continue_accumulation() || passes_ == 0 || accumulated_.width() != out.width() ||
+      accumulated_.height() != out.height()) {
     passes_ = 0;
     radius2_ = base * base;
     accumulated_ = Image(out.width(), out.height());
-    last_settings_ = settings_;
-    last_camera_ = c.camera;
-    last_width_ = c.gbuffer.width;
-    last_height_ = c.gbuffer.height;
-    scene_dirty_ = false;
   }
   const float radius = std::sqrt(radius2_);
   last_radius_ = radius;

@@ -22,8 +22,7 @@ struct TiledSettings {
   int gather = 0;     // density estimation: 0 screen tiles (the seed's; faster here), 1 hash grid
   float slab = 0.1f;  // half-thickness of the tangent slab, relative to the radius
   bool leak_guard = true;       // per-photon clearance rays against light through thin walls
-  bool progressive = true;      // at rest, add passes and shrink the radius
-  float alpha = 2.0f / 3.0f;    // progressive radius reduction (Knaus and Zwicker 2011)
+  float alpha = 2.0f / 3.0f;    // radius reduction of passes at rest (Knaus and Zwicker 2011)
   float edge_normal = 0.99f;    // re-estimate at full resolution below this normal agreement
   float edge_distance = 0.01f;  // ... or beyond this position gap, relative to the diagonal
   bool show_edges = false;      // debug view: re-estimated pixels in yellow
@@ -36,11 +35,14 @@ class TiledPhotonMapping final : public Technique {
  public:
   TiledPhotonMapping();
   std::string name() const override { return "tiled"; }
-  void scene_changed(const Scene& scene, const Tracer& tracer) override;
+  // At rest (FrameSettings::accumulate) passes with shrinking radii average into one estimate.
+  IndirectHistory indirect_history() const override { return IndirectHistory::kAccumulated; }
+  std::vector<TechniqueOption> options() const override;
+  std::vector<std::string> still_defaults() const override;
   void indirect(const FrameContext& context, Image& out) override;
 
   TiledSettings& settings() { return settings_; }
-  // Passes accumulated into the current image (1 after any change).
+  // Passes averaged into the current image (1 after any change or without accumulation).
   uint32_t passes() const { return passes_; }
   // The gather radius of the last pass, in scene units.
   float last_radius() const { return last_radius_; }
@@ -54,15 +56,10 @@ class TiledPhotonMapping final : public Technique {
     std::vector<vec3> radiance, normal, position;
     std::vector<uint8_t> valid;
   };
-  bool restart_needed(const FrameContext& context) const;
   void estimate(const FrameContext& context, float radius, Image& estimate);
   vec3 estimate_at(const GBuffer& g, int x, int y, float radius) const;
 
   TiledSettings settings_;
-  TiledSettings last_settings_;
-  CameraRays last_camera_{};
-  int last_width_ = 0, last_height_ = 0;
-  bool scene_dirty_ = true;
 
   PhotonTracer tracer_;
   PhotonBuffer photons_;

@@ -1,0 +1,16 @@
+// The technique registry: creating a technique by name.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bounce/render/technique.h"
+
+namespace bounce {
+
+// Creates a technique by name; throws Error listing the known names for an unknown one.
+std::unique_ptr<Technique> make_technique(const std::string& name);
+std::vector<std::string> technique_names();
+
+}  // namespace bounce
