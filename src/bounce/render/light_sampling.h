@@ -9,6 +9,7 @@
 #include "bounce/core/math.h"
 #include "bounce/core/sampling.h"
 #include "bounce/render/brdf.h"
+#include "bounce/render/sphere_cone.h"
 #include "bounce/scene/scene.h"
 
 namespace bounce {
@@ -49,16 +50,14 @@ inline LightSample sample_sphere_light(const Light& light, vec3 p, vec2 u) {
   const vec3 to_centre = light.position - p;
   const float d2 = glm::dot(to_centre, to_centre);
   const float r2 = light.radius * light.radius;
-  if (d2 <= r2) return s;  // inside the light: it is not a surface we shade against
+  const SphereCone cone = sphere_cone(d2, r2);
+  if (!cone.outside) return s;  // inside the light: it is not a surface we shade against
   const float d = std::sqrt(d2);
-  const float sin2_max = r2 / d2;
-  const float cos_max = std::sqrt(1.0f - sin2_max);
-  const float one_minus_cos = sin2_max / (1.0f + cos_max);  // stable for small spheres
-  const vec3 local = sample_uniform_cone(u, cos_max);
+  const vec3 local = sample_uniform_cone(u, cone.cos_max);
   s.wi = Basis::from_normal(to_centre / d).to_world(local);
   const float b = glm::dot(s.wi, to_centre);
   s.distance = b - std::sqrt(glm::max(0.0f, b * b - (d2 - r2)));
-  s.pdf = 1.0f / (kTwoPi * one_minus_cos);
+  s.pdf = 1.0f / cone.solid_angle();
   s.weight = light.radiance / s.pdf;
   return s;
 }
