@@ -2,10 +2,10 @@
 // plain data, shared by the direct-light stage, the path tracer and (later) CUDA kernels.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "bounce/core/cdf_sampling.h"
 #include "bounce/core/math.h"
 #include "bounce/core/sampling.h"
 #include "bounce/render/brdf.h"
@@ -69,11 +69,9 @@ struct AreaLightPoint {
   vec3 normal;
 };
 inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLight& light, vec2 u) {
-  const auto it = std::lower_bound(light.cdf.begin(), light.cdf.end(), u.x);
-  const size_t k = std::min(size_t(it - light.cdf.begin()), light.cdf.size() - 1);
-  const float lo = k == 0 ? 0.0f : light.cdf[k - 1];
-  const float span = light.cdf[k] - lo;
-  const vec2 v(span > 0.0f ? glm::clamp((u.x - lo) / span, 0.0f, 0.99999994f) : 0.5f, u.y);
+  const CdfSample pick = sample_cdf(light.cdf.data(), light.cdf.size(), u.x);
+  const uint32_t k = pick.entry;
+  const vec2 v(pick.u, u.y);
   const TriangleRef ref = light.triangles[k];
   const Mesh& mesh = scene.meshes[ref.mesh];
   const uvec3 tri = mesh.triangles[ref.triangle];
