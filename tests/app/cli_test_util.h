@@ -8,7 +8,11 @@
 #include <filesystem>
 #include <string>
 
+#include "test_text.h"
+
 namespace bounce::cli_test {
+
+using test::contains;
 
 struct Result {
   int status = -1;     // exit status; -1 when the program did not exit normally (a crash)

@@ -1,10 +1,13 @@
-// The evaluation commands end to end: reference, compare and bench --json.
+// The evaluation commands end to end: reference, compare and bench --json, whose numbers must
+// agree with what was asked and with each other.
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -16,13 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using cli_test::contains;
 using cli_test::Result;
 using cli_test::run;
 using cli_test::scratch_dir;
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
 
 TEST(CliEvaluation, CommandsHaveHelp) {
   for (const char* command : {"reference", "compare"}) {
@@ -44,7 +44,8 @@ TEST(CliEvaluation, ReferenceWritesALinearImageAndReportsProgress) {
   const bounce::Image image = bounce::load_image(exr.string());
   EXPECT_EQ(image.width(), 24);
   EXPECT_EQ(image.height(), 16);
-  EXPECT_GT(bounce::mean(image).x, 0.0f);
+  const bounce::vec3 m = bounce::mean(image);
+  for (int c = 0; c < 3; ++c) EXPECT_GT(m[c], 0.0f) << c;
   int files = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1) << "no temporary files left behind";
@@ -119,6 +120,42 @@ TEST(CliEvaluation, CompareRejectsMismatchedAndMissingImages) {
   }
 }
 
+// The stage table of a bench JSON record: name -> (mean, standard deviation) in ms.
+std::map<std::string, std::pair<double, double>> stage_table(const nlohmann::json& j) {
+  std::map<std::string, std::pair<double, double>> table;
+  for (const auto& stage : j["stages"])
+    table[stage["name"].get<std::string>()] = {stage["mean_ms"].get<double>(),
+                                               stage["stddev_ms"].get<double>()};
+  return table;
+}
+
+// What must hold between a bench record's numbers whatever the timings: the top-level stages
+// add up to the frame total, each standard deviation is one that non-negative times can have,
+// and every rate is its count over the time of the stage it is measured on.
+void expect_consistent_timings(const nlohmann::json& j) {
+  const double frames = j["frames"].get<double>();
+  const double total = j["total"]["mean_ms"].get<double>();
+  ASSERT_GT(total, 0.0);
+  double sum = 0.0;
+  for (const auto& [name, timing] : stage_table(j)) {
+    const auto [mean, stddev] = timing;
+    if (!contains(name, "/")) sum += mean;  // "indirect/..." sub-stages lie inside "indirect"
+    // n times >= 0 with mean m have a sample deviation of at most m sqrt(n).
+    EXPECT_LE(stddev, mean * std::sqrt(frames) * (1.0 + 1e-9) + 1e-12) << name;
+  }
+  EXPECT_NEAR(sum, total, 1e-9 * total);
+  EXPECT_NEAR(j["fps"].get<double>(), 1000.0 / total, 1e-9 * (1000.0 / total));
+  const auto table = stage_table(j);
+  const auto rate = [&](const char* count, const char* stage) {
+    return j["rays"][count].get<double>() / (table.at(stage).first * 1e-3);
+  };
+  const nlohmann::json& rays = j["rays"];
+  EXPECT_NEAR(rays["primary_per_s"].get<double>(), rate("primary_per_frame", "gbuffer"),
+              1e-9 * rays["primary_per_s"].get<double>());
+  EXPECT_NEAR(rays["shadow_per_s"].get<double>(), rate("shadow_per_frame", "direct"),
+              1e-9 * rays["shadow_per_s"].get<double>());
+}
+
 TEST(CliEvaluation, BenchWritesJson) {
   const fs::path dir = scratch_dir("bench-json");
   const std::string path = (dir / "bench.json").string();
@@ -129,26 +166,69 @@ TEST(CliEvaluation, BenchWritesJson) {
   EXPECT_EQ(j["scene"], "cornell");
   EXPECT_EQ(j["technique"], "direct");
   EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["warmup_frames"], 1);
   EXPECT_EQ(j["width"], 16);
+  EXPECT_EQ(j["height"], 16);
+  EXPECT_EQ(j["light_samples"], 1);  // bench's real-time default
   EXPECT_FALSE(j["bounce_version"].get<std::string>().empty());
   EXPECT_FALSE(j["build"]["compiler"].get<std::string>().empty());
-  EXPECT_TRUE(j["build"].contains("git_revision_at_configure"));
+  EXPECT_TRUE(j["build"]["git_revision_at_configure"].is_string());
   EXPECT_FALSE(j["machine"]["cpu"].get<std::string>().empty());
   EXPECT_GE(j["machine"]["logical_cores"].get<int>(), 1);
-  bool has_gbuffer = false;
-  for (const auto& stage : j["stages"]) {
-    EXPECT_GE(stage["mean_ms"].get<double>(), 0.0);
-    EXPECT_GE(stage["stddev_ms"].get<double>(), 0.0);
-    has_gbuffer |= stage["name"] == "gbuffer";
-  }
-  EXPECT_TRUE(has_gbuffer);
-  EXPECT_GT(j["total"]["mean_ms"].get<double>(), 0.0);
-  EXPECT_EQ(j["rays"]["primary_per_frame"].get<double>(), 256.0);
-  EXPECT_GT(j["rays"]["primary_per_s"].get<double>(), 0.0);
-  EXPECT_TRUE(j["photons"].contains("paths_per_s"));
+  EXPECT_GE(j["machine"]["threads"].get<int>(), 1);
+
+  const auto stages = stage_table(j);
+  for (const char* stage : {"gbuffer", "direct", "composite", "tonemap"})
+    EXPECT_EQ(stages.count(stage), 1u) << stage;
+  EXPECT_EQ(stages.count("indirect"), 0u) << "direct has no indirect stage";
+  expect_consistent_timings(j);
+
+  // One primary ray per pixel; at most one shadow ray per pixel (one area light, one sample),
+  // and some pixels see the light above their horizon.
+  EXPECT_EQ(j["rays"]["primary_per_frame"].get<double>(), 16.0 * 16.0);
+  EXPECT_GT(j["rays"]["shadow_per_frame"].get<double>(), 0.0);
+  EXPECT_LE(j["rays"]["shadow_per_frame"].get<double>(), 16.0 * 16.0);
+  // No technique, no photons: counts of zero and no rate over a stage that did not run.
+  EXPECT_EQ(j["rays"]["technique_per_frame"].get<double>(), 0.0);
+  EXPECT_TRUE(j["rays"]["technique_per_s"].is_null());
+  EXPECT_EQ(j["photons"]["paths_per_frame"].get<double>(), 0.0);
+  EXPECT_EQ(j["photons"]["stored_per_frame"].get<double>(), 0.0);
+  EXPECT_TRUE(j["photons"]["paths_per_s"].is_null());
+  EXPECT_TRUE(j["flicker"].is_null());
   int files = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1);
+}
+
+TEST(CliEvaluation, BenchJsonCountsThePhotonsAskedFor) {
+  const fs::path dir = scratch_dir("bench-json-tiled");
+  const std::string path = (dir / "bench.json").string();
+  const Result r =
+      run("bench cornell -t tiled -W 16 -H 16 --light-samples 2 --frames 2 --warmup 0 "
+          "--param photons=500 --json " +
+          path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["technique"], "tiled");
+  EXPECT_EQ(j["params"]["photons"], "500");
+  EXPECT_EQ(j["light_samples"], 2);
+  EXPECT_EQ(j["frames"], 2);
+  EXPECT_EQ(stage_table(j).count("indirect"), 1u);
+  expect_consistent_timings(j);
+  EXPECT_EQ(j["rays"]["primary_per_frame"].get<double>(), 16.0 * 16.0);
+  EXPECT_LE(j["rays"]["shadow_per_frame"].get<double>(), 2.0 * 16.0 * 16.0);
+  const nlohmann::json& photons = j["photons"];
+  const double paths = photons["paths_per_frame"].get<double>();
+  EXPECT_EQ(paths, 500.0);
+  EXPECT_GT(photons["stored_per_frame"].get<double>(), 0.0);
+  // Every path traces at least the ray it leaves its light on.
+  EXPECT_GE(j["rays"]["technique_per_frame"].get<double>(), paths);
+  // Photon paths and technique rays are rated over the whole indirect stage.
+  const double indirect_s = stage_table(j).at("indirect").first * 1e-3;
+  EXPECT_NEAR(photons["paths_per_s"].get<double>(), paths / indirect_s, 1e-9 * paths / indirect_s);
+  const double technique_rate = j["rays"]["technique_per_frame"].get<double>() / indirect_s;
+  EXPECT_NEAR(j["rays"]["technique_per_s"].get<double>(), technique_rate, 1e-9 * technique_rate);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
-// bounce bench --flicker / --settle end to end: the text report and the JSON keys.
+// bounce bench --flicker / --settle end to end: the text report and the JSON record, against the
+// same measurements made in the test.
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
@@ -7,17 +10,17 @@
 #include <string>
 
 #include "app/cli_test_util.h"
+#include "bounce/metrics/temporal_runs.h"
+#include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {
 
+using cli_test::contains;
 using cli_test::Result;
 using cli_test::run;
 using cli_test::scratch_dir;
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
 
 TEST(CliTemporal, BenchReportsFlickerAndSettleAsTextAndJson) {
   const std::filesystem::path dir = scratch_dir("bench-temporal");
@@ -28,6 +31,18 @@ TEST(CliTemporal, BenchReportsFlickerAndSettleAsTextAndJson) {
           path);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "flicker (32x32, 4 frames after 1 warm-up)")) << r.output;
+  // The same runs made here (bench renders one light sample per pixel unless told otherwise).
+  FrameSettings settings;
+  settings.width = settings.height = 32;
+  settings.light_samples = 1;
+  const auto tiled = [] { return make_technique("tiled"); };
+  const Scene scene = make_cornell();
+  const double at_rest = measure_flicker(scene, tiled, settings, 1, 4, true).flicker;
+  const double off = measure_flicker(scene, tiled, settings, 1, 4, false).flicker;
+  EXPECT_GT(at_rest, 0.0);  // passes at rest still change the image
+  EXPECT_TRUE(
+      contains(r.output, fmt::format("{:.4f} at rest, {:.4f} with accumulation off", at_rest, off)))
+      << r.output;
   EXPECT_TRUE(contains(r.output, "with accumulation off (FrameSettings.accumulate=false)"))
       << r.output;
   EXPECT_TRUE(contains(r.output, "settle (32x32, 16-pixel blocks")) << r.output;
@@ -38,8 +53,8 @@ TEST(CliTemporal, BenchReportsFlickerAndSettleAsTextAndJson) {
   EXPECT_EQ(f["width"], 32);
   EXPECT_EQ(f["height"], 32);
   EXPECT_EQ(f["frames"], 4);
-  EXPECT_GE(f["at_rest"].get<double>(), 0.0);
-  EXPECT_GT(f["accumulation_off"].get<double>(), 0.0);
+  EXPECT_NEAR(f["at_rest"].get<double>(), at_rest, 1e-12 * at_rest);
+  EXPECT_NEAR(f["accumulation_off"].get<double>(), off, 1e-12 * off);
   EXPECT_FALSE(f.contains("params_turned_off"));  // accumulation is the pipeline's setting
   const nlohmann::json& s = j["settle"];
   ASSERT_TRUE(s.is_object()) << j.dump(2);
@@ -69,7 +84,10 @@ TEST(CliTemporal, DirectHasNoSettleAndPlainBenchHasNoTemporalMetrics) {
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_EQ(j["settle"]["applicable"], false);
     EXPECT_TRUE(j["settle"]["frames"].is_null());
-    EXPECT_GE(j["flicker"]["at_rest"].get<double>(), 0.0);
+    // Averaging direct light at rest steadies it: less flicker than frames on their own.
+    const double at_rest = j["flicker"]["at_rest"].get<double>();
+    EXPECT_GT(at_rest, 0.0);
+    EXPECT_LT(at_rest, j["flicker"]["accumulation_off"].get<double>());
   }
   r = run("bench cornell -t direct -W 16 -H 16 --frames 1 --warmup 0 --json " + path);
   ASSERT_EQ(r.status, 0) << r.output;

@@ -8,6 +8,7 @@
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
+#include "scene/hand_built_scenes.h"
 
 namespace bounce {
 namespace {
@@ -68,13 +69,9 @@ TEST(DynamicFrames, TheTracerFollowsAnAnimatedMesh) {
   Scene s;
   s.source = "slider";
   s.materials.push_back(Material{});
-  Mesh m;
-  m.name = "quad";
-  m.positions = {vec3(-0.5f, -0.5f, 0), vec3(0.5f, -0.5f, 0), vec3(0.5f, 0.5f, 0),
-                 vec3(-0.5f, 0.5f, 0)};
-  m.triangles = {uvec3(0, 2, 1), uvec3(0, 3, 2)};
-  m.materials = {0, 0};
-  s.meshes.push_back(m);
+  // Faces -z, towards the camera.
+  s.meshes.push_back(
+      scene_test::quad_mesh("quad", vec3(-0.5f, -0.5f, 0), vec3(0, 1, 0), vec3(1, 0, 0), 0));
   s.lights.push_back(Light::point(vec3(0, 0, -2), vec3(1.0f)));
   TrsTrack slide;
   slide.name = "slide";

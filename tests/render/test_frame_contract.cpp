@@ -55,7 +55,7 @@ TEST(FrameContract, TheRendererTellsTheTechniqueWhatChanged) {
   renderer.render(moved, s);         // 2: camera
   renderer.technique().params().set("knob", "2");
   renderer.render(moved, s);  // 3: parameters
-  renderer.scene_changed(SceneChange{.lights = true});
+  renderer.scene_changed(SceneChange{{}, true});
   renderer.render(moved, s);  // 4: lights
   s.light_samples = 2;
   renderer.render(moved, s);  // 5: frame settings count as parameters

@@ -6,6 +6,7 @@
 #include "bounce/core/color.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
+#include "render/render_test_util.h"
 #include "scene/gltf_export.h"
 
 namespace bounce {
@@ -14,11 +15,11 @@ namespace {
 namespace fs = std::filesystem;
 
 Image render_small(const Scene& scene) {
-  FrameSettings settings;
-  settings.width = 64;
-  settings.height = 64;
-  settings.light_samples = 8;
-  return render_image(scene, "direct", settings, 2);
+  render_test::Job job("direct", 64, 64);
+  job.light_samples = 8;
+  job.frames = 2;
+  job.jitter = true;
+  return render_test::render(scene, job).color;
 }
 
 TEST(ObjVsGltf, CornellBoxRendersTheSameFromBothFormats) {

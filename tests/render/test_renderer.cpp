@@ -1,21 +1,22 @@
 #include <gtest/gtest.h>
 
 #include "bounce/core/error.h"
-#include "bounce/core/parallel.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
+#include "render/render_test_util.h"
+#include "scene/hand_built_scenes.h"
 
 namespace bounce {
 namespace {
 
 Image render_with_threads(const Scene& scene, int threads) {
-  const ThreadLimit limit(threads);
-  FrameSettings settings;
-  settings.width = 48;
-  settings.height = 40;
-  settings.light_samples = 4;
-  return render_image(scene, "direct", settings, 3);
+  render_test::Job job("direct", 48, 40);
+  job.light_samples = 4;
+  job.frames = 3;
+  job.jitter = true;
+  job.threads = threads;
+  return render_test::render(scene, job).color;
 }
 
 TEST(Renderer, ImagesAreIdenticalWhateverTheThreadCount) {
@@ -56,29 +57,28 @@ TEST(Renderer, JitteredFramesAverageToTheBoxFilteredPixel) {
   s.source = "edge";
   Material emitter;
   emitter.albedo = vec3(0.0f);
-  emitter.emission = vec3(1.0f);
+  const vec3 radiance(1.0f, 0.5f, 0.25f);
+  emitter.emission = radiance;
   s.materials.push_back(emitter);
-  Mesh m;
-  m.name = "half";
   // Covers x >= 0 in the plane z = 1, facing the camera at the origin (normal -z).
-  m.positions = {vec3(0, -10, 1), vec3(0, 10, 1), vec3(10, 10, 1), vec3(10, -10, 1)};
-  m.triangles = {uvec3(0, 1, 2), uvec3(0, 2, 3)};
-  m.materials = {0, 0};
-  s.meshes.push_back(m);
+  s.meshes.push_back(
+      scene_test::quad_mesh("half", vec3(0, -10, 1), vec3(0, 20, 0), vec3(10, 0, 0), 0));
   s.camera.position = vec3(0.0f);
   s.camera.look_at = vec3(0.0f, 0.0f, 1.0f);
   s.camera.vfov_deg = 90.0f;
   s.has_camera = true;
   s.finalize();
-  FrameSettings settings;
-  settings.width = 3;  // the middle column straddles x = 0
-  settings.height = 3;
-  settings.light_samples = 1;
-  const Image image = render_image(s, "direct", settings, 64);
+  render_test::Job job("direct", 3, 3);  // the middle column straddles x = 0
+  job.light_samples = 1;
+  job.frames = 64;
+  job.jitter = true;
+  const Image image = render_test::render(s, job).color;
   // Image +x is world -x here (right = forward x up), so the emitter fills the left column.
-  EXPECT_NEAR(image.at(0, 1).x, 1.0f, 1e-6f);
-  EXPECT_NEAR(image.at(2, 1).x, 0.0f, 1e-6f);
-  EXPECT_NEAR(image.at(1, 1).x, 0.5f, 0.02f);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(image.at(0, 1)[c], radiance[c], 1e-6f) << c;
+    EXPECT_NEAR(image.at(2, 1)[c], 0.0f, 1e-6f) << c;
+    EXPECT_NEAR(image.at(1, 1)[c], 0.5f * radiance[c], 0.02f * radiance[c]) << c;
+  }
 }
 
 }  // namespace

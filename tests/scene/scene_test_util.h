@@ -12,6 +12,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/scene/scene.h"
+#include "test_text.h"
 
 namespace bounce::scene_test {
 
@@ -64,9 +65,7 @@ std::string error_of(F&& f) {
   return "";
 }
 
-inline bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using test::contains;
 
 inline const Mesh* find_mesh(const Scene& scene, const std::string& name) {
   for (const Mesh& m : scene.meshes)

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bounce/core/math.h"
+#include "bounce/render/sphere_cone.h"
 #include "bounce/scene/light.h"
 #include "bounce/scene/scene.h"
 
@@ -14,12 +15,8 @@ namespace bounce {
 // sphere subtends from p (uniform in that cone); 0 when p is inside the sphere.
 inline float sphere_light_pdf(const Light& light, vec3 p) {
   const vec3 to_centre = light.position - p;
-  const float d2 = glm::dot(to_centre, to_centre);
-  const float r2 = light.radius * light.radius;
-  if (d2 <= r2) return 0.0f;
-  const float sin2_max = r2 / d2;
-  const float cos_max = std::sqrt(1.0f - sin2_max);
-  return 1.0f / (kTwoPi * (sin2_max / (1.0f + cos_max)));
+  const SphereCone cone = sphere_cone(glm::dot(to_centre, to_centre), light.radius * light.radius);
+  return cone.outside ? 1.0f / cone.solid_angle() : 0.0f;
 }
 
 // pdf with which sample_area_light(scene, light, p, .) returns the direction towards a point of

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bounce/core/cdf_sampling.h"
 #include "bounce/scene/scene.h"
 
 namespace bounce {
@@ -22,25 +23,11 @@ struct LightPicker {
   static LightPicker build(const Scene& scene);
 
   bool empty() const { return cdf.empty(); }
-  // The entry that u in [0, 1) selects (binary search over the cdf).
-  uint32_t pick(float u) const {
-    uint32_t lo = 0, hi = uint32_t(cdf.size()) - 1;
-    while (lo < hi) {
-      const uint32_t mid = (lo + hi) / 2;
-      if (u < cdf[mid])
-        hi = mid;
-      else
-        lo = mid + 1;
-    }
-    return lo;
-  }
+  // The entry that u in [0, 1) selects.
+  uint32_t pick(float u) const { return sample_cdf(cdf.data(), cdf.size(), u).entry; }
   // Stretches u, which picked `entry`, back over [0, 1): the rest of the sample stays
   // stratified when u is reused to place a point on the light.
-  float remap(uint32_t entry, float u) const {
-    const float lo = entry == 0 ? 0.0f : cdf[entry - 1];
-    const float span = cdf[entry] - lo;
-    return span > 0.0f ? glm::clamp((u - lo) / span, 0.0f, 0.99999994f) : 0.5f;
-  }
+  float remap(uint32_t entry, float u) const { return cdf_stretch(cdf.data(), entry, u); }
   float light_pmf(uint32_t light) const { return empty() ? 0.0f : pmf[light]; }
   float area_light_pmf(uint32_t area_light) const {
     return empty() ? 0.0f : pmf[light_count + area_light];

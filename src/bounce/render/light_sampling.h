@@ -2,13 +2,14 @@
 // plain data, shared by the direct-light stage, the path tracer and (later) CUDA kernels.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "bounce/core/cdf_sampling.h"
 #include "bounce/core/math.h"
 #include "bounce/core/sampling.h"
 #include "bounce/render/brdf.h"
+#include "bounce/render/sphere_cone.h"
 #include "bounce/scene/scene.h"
 
 namespace bounce {
@@ -49,16 +50,14 @@ inline LightSample sample_sphere_light(const Light& light, vec3 p, vec2 u) {
   const vec3 to_centre = light.position - p;
   const float d2 = glm::dot(to_centre, to_centre);
   const float r2 = light.radius * light.radius;
-  if (d2 <= r2) return s;  // inside the light: it is not a surface we shade against
+  const SphereCone cone = sphere_cone(d2, r2);
+  if (!cone.outside) return s;  // inside the light: it is not a surface we shade against
   const float d = std::sqrt(d2);
-  const float sin2_max = r2 / d2;
-  const float cos_max = std::sqrt(1.0f - sin2_max);
-  const float one_minus_cos = sin2_max / (1.0f + cos_max);  // stable for small spheres
-  const vec3 local = sample_uniform_cone(u, cos_max);
+  const vec3 local = sample_uniform_cone(u, cone.cos_max);
   s.wi = Basis::from_normal(to_centre / d).to_world(local);
   const float b = glm::dot(s.wi, to_centre);
   s.distance = b - std::sqrt(glm::max(0.0f, b * b - (d2 - r2)));
-  s.pdf = 1.0f / (kTwoPi * one_minus_cos);
+  s.pdf = 1.0f / cone.solid_angle();
   s.weight = light.radiance / s.pdf;
   return s;
 }
@@ -70,11 +69,9 @@ struct AreaLightPoint {
   vec3 normal;
 };
 inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLight& light, vec2 u) {
-  const auto it = std::lower_bound(light.cdf.begin(), light.cdf.end(), u.x);
-  const size_t k = std::min(size_t(it - light.cdf.begin()), light.cdf.size() - 1);
-  const float lo = k == 0 ? 0.0f : light.cdf[k - 1];
-  const float span = light.cdf[k] - lo;
-  const vec2 v(span > 0.0f ? glm::clamp((u.x - lo) / span, 0.0f, 0.99999994f) : 0.5f, u.y);
+  const CdfSample pick = sample_cdf(light.cdf.data(), light.cdf.size(), u.x);
+  const uint32_t k = pick.entry;
+  const vec2 v(pick.u, u.y);
   const TriangleRef ref = light.triangles[k];
   const Mesh& mesh = scene.meshes[ref.mesh];
   const uvec3 tri = mesh.triangles[ref.triangle];

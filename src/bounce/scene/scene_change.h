@@ -19,7 +19,11 @@ struct SceneChange {
   // Everything is new: the first frame, a new technique or a new scene. Nothing carries over.
   bool everything = false;
 
-  static SceneChange all() { return SceneChange{.everything = true}; }
+  static SceneChange all() {
+    SceneChange c;
+    c.everything = true;
+    return c;
+  }
 
   bool geometry() const { return !moved_meshes.empty() || everything; }
   // Whether light transport in world space (photons, per-vertex light, hit buffers) is still

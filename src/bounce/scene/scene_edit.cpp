@@ -18,7 +18,10 @@ SceneChange move_vertices(Scene& scene, uint32_t mesh_id, const std::vector<uint
   for (AnimatedMesh& am : scene.animation.meshes)
     if (am.mesh == mesh_id) shift(am.rest_positions);
   scene.derive();
-  return SceneChange{.moved_meshes = {mesh_id}, .lights = !scene.area_lights.empty()};
+  SceneChange change;
+  change.moved_meshes = {mesh_id};
+  change.lights = !scene.area_lights.empty();
+  return change;
 }
 
 }  // namespace

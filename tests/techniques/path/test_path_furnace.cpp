@@ -7,6 +7,7 @@
 #include "bounce/techniques/path/reference.h"
 #include "bounce/techniques/registry.h"
 #include "path_test_util.h"
+#include "render/render_test_util.h"
 
 namespace bounce {
 namespace {
@@ -57,23 +58,15 @@ TEST(PathFurnace, MaxBouncesTruncatesTheSeriesWithAndWithoutRoulette) {
 
 TEST(PathFurnace, PipelineDirectPlusPathIndirectIsTheFullAnswer) {
   const Scene s = furnace(kAlbedo, kRadiance);
-  auto tracer = make_embree_tracer(s);
   for (int bounces : {-1, 1}) {
-    auto technique = make_technique("path");
-    technique->params().set("max_bounces", std::to_string(bounces));
-    technique->params().set("samples", "4");
-    Renderer renderer(s, *tracer, std::move(technique));
-    FrameSettings settings;
-    settings.width = settings.height = 16;
-    settings.light_samples = 4;
-    settings.jitter = true;
-    settings.accumulate = true;  // frames at rest average into the converged image
-    Image direct, indirect;
-    for (int k = 0; k < 32; ++k) {
-      const Frame& f = renderer.render(s.camera, settings);
-      direct = f.direct;
-      indirect = f.indirect;
-    }
+    render_test::Job job("path", 16, 16);
+    job.params = {{"max_bounces", std::to_string(bounces)}, {"samples", "4"}};
+    job.light_samples = 4;
+    job.frames = 32;
+    job.jitter = true;
+    const render_test::Images images = render_test::render(s, job);
+    const Image& direct = images.direct;
+    const Image& indirect = images.indirect;
     // Direct stage: Le + a Le. Indirect: light that bounced at least once, a^2 Le and on.
     const vec3 full = geometric_sum(kRadiance, kAlbedo, bounces < 0 ? -1 : bounces + 1);
     const vec3 expected_direct = geometric_sum(kRadiance, kAlbedo, 1);

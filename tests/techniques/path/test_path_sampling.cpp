@@ -6,10 +6,11 @@
 #include "bounce/core/qmc.h"
 #include "bounce/render/bsdf_sampling.h"
 #include "bounce/render/light_pdf.h"
-#include "bounce/render/light_sampling.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/light_sampling.h"
 #include "bounce/techniques/path/path_tracer.h"
 #include "path_test_util.h"
+#include "scene/hand_built_scenes.h"
 
 namespace bounce {
 namespace {
@@ -247,10 +248,9 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
   s.materials = {floor, lamp};
   Mesh mesh;
   mesh.name = "scene";
-  path_test::add_quad(mesh, vec3(-3, 0, -3), vec3(-3, 0, 3), vec3(3, 0, 3), vec3(3, 0, -3), 0);
+  scene_test::add_quad(mesh, vec3(-3, 0, -3), vec3(0, 0, 6), vec3(6, 0, 0), 0);
   // A 0.6 m square lamp facing down at height 1, off to the side.
-  path_test::add_quad(mesh, vec3(0.4f, 1, -0.3f), vec3(1.0f, 1, -0.3f), vec3(1.0f, 1, 0.3f),
-                      vec3(0.4f, 1, 0.3f), 1);
+  scene_test::add_quad(mesh, vec3(0.4f, 1, -0.3f), vec3(0.6f, 0, 0), vec3(0, 0, 0.6f), 1);
   s.meshes.push_back(mesh);
   s.lights.push_back(Light::sphere(vec3(-0.8f, 0.7f, 0.2f), 0.15f, vec3(20.0f)));
   s.finalize();

@@ -1,0 +1,47 @@
+// Geometry built by hand in tests: quads and inward-facing boxes.
+#pragma once
+
+#include <string>
+
+#include "bounce/scene/mesh.h"
+
+namespace bounce::scene_test {
+
+// Appends the parallelogram corner, corner + u, corner + u + v, corner + v as triangles
+// (0,1,2), (0,2,3); it faces where cross(u, v) points.
+inline void add_quad(Mesh& mesh, vec3 corner, vec3 u, vec3 v, uint32_t material) {
+  const uint32_t base = uint32_t(mesh.positions.size());
+  for (const vec3& p : {corner, corner + u, corner + u + v, corner + v})
+    mesh.positions.push_back(p);
+  mesh.triangles.push_back({base, base + 1, base + 2});
+  mesh.triangles.push_back({base, base + 2, base + 3});
+  mesh.materials.insert(mesh.materials.end(), 2, material);
+}
+
+// A mesh of one quad (add_quad).
+inline Mesh quad_mesh(const std::string& name, vec3 corner, vec3 u, vec3 v, uint32_t material) {
+  Mesh mesh;
+  mesh.name = name;
+  add_quad(mesh, corner, u, v, material);
+  return mesh;
+}
+
+// The six faces of the box between corners lo and hi, facing inwards: a room seen from inside.
+inline Mesh inward_box(const std::string& name, vec3 lo, vec3 hi, uint32_t material) {
+  Mesh mesh;
+  mesh.name = name;
+  const vec3 size = hi - lo;
+  for (int axis = 0; axis < 3; ++axis) {
+    // cross(e1, e2) is the axis itself, so (u, v) faces the lo wall inwards; the hi wall swaps.
+    vec3 e1(0.0f), e2(0.0f);
+    e1[(axis + 1) % 3] = size[(axis + 1) % 3];
+    e2[(axis + 2) % 3] = size[(axis + 2) % 3];
+    add_quad(mesh, lo, e1, e2, material);
+    vec3 far_corner = lo;
+    far_corner[axis] = hi[axis];
+    add_quad(mesh, far_corner, e2, e1, material);
+  }
+  return mesh;
+}
+
+}  // namespace bounce::scene_test
