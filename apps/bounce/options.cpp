@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce::app {
 

@@ -4,6 +4,7 @@
 #include "bounce/core/color.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {

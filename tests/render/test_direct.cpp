@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {

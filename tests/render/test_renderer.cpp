@@ -2,8 +2,10 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
+#include "bounce/techniques/registry.h"
 
 namespace bounce::app {
 

@@ -122,16 +122,4 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   return f;
 }
 
-Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
-                   int spp) {
-  if (spp <= 0) fail("samples per pixel must be positive (got {})", spp);
-  auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_technique(technique));
-  FrameSettings s = settings;
-  s.jitter = spp > 1;
-  Image sum(s.width, s.height);
-  for (int k = 0; k < spp; ++k) sum += renderer.render(scene.camera, s).color;
-  return sum * (1.0f / float(spp));
-}
-
 }  // namespace bounce

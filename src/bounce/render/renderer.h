@@ -76,8 +76,4 @@ class Renderer {
   int last_light_samples_ = 0;
 };
 
-// Renders `spp` jittered frames of the scene's own camera and returns their linear average.
-Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
-                   int spp = 1);
-
 }  // namespace bounce

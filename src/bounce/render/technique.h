@@ -51,8 +51,4 @@ class Technique {
   ParamSet params_;
 };
 
-// Creates a technique by name; throws Error listing the known names for an unknown one.
-std::unique_ptr<Technique> make_technique(const std::string& name);
-std::vector<std::string> technique_names();
-
 }  // namespace bounce

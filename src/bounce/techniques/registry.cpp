@@ -1,9 +1,10 @@
 // The technique registry: the one place that maps names to implementations.
+#include "bounce/techniques/registry.h"
+
 #include <functional>
 #include <utility>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
 #include "bounce/techniques/direct/direct_only.h"
 #include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/tiled/tiled.h"

@@ -5,6 +5,7 @@
 
 #include "bounce/render/renderer.h"
 #include "bounce/techniques/path/reference.h"
+#include "bounce/techniques/registry.h"
 #include "path_test_util.h"
 
 namespace bounce {

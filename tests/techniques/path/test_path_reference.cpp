@@ -8,6 +8,7 @@
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/path/reference.h"
+#include "bounce/techniques/registry.h"
 #include "path_test_util.h"
 
 namespace bounce {
