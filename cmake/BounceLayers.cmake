@@ -34,3 +34,17 @@ function(bounce_layer name)
     PRIVATE ${arg_PRIVATE_LIBS})
   set_property(GLOBAL APPEND PROPERTY BOUNCE_LAYER_TARGETS ${target})
 endfunction()
+
+# Every folder of src/bounce must be a layer: a folder nobody declared would otherwise not be
+# built at all, and its code would be missing without an error.
+function(bounce_check_every_folder_is_a_layer)
+  get_property(targets GLOBAL PROPERTY BOUNCE_LAYER_TARGETS)
+  file(GLOB folders LIST_DIRECTORIES true CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/bounce/*)
+  foreach(folder IN LISTS folders)
+    get_filename_component(name ${folder} NAME)
+    if(IS_DIRECTORY ${folder} AND NOT bounce_${name} IN_LIST targets)
+      message(FATAL_ERROR "src/bounce/${name} is not a layer: add bounce_layer(${name} BELOW ...) "
+        "to src/CMakeLists.txt")
+    endif()
+  endforeach()
+endfunction()
