@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "bounce/core/timer.h"
-#include "bounce/metrics/temporal_runs.h"
+#include "bounce/eval/temporal_runs.h"
 #include "bounce/render/renderer.h"
 
 namespace bounce::app {
 
-// bench --flicker / --settle (bounce/metrics/temporal_runs.h).
+// bench --flicker / --settle (bounce/eval/temporal_runs.h).
 struct TemporalRecord {
   int width = 0, height = 0;  // the size the temporal runs rendered at
   int flicker_frames = 0;     // 0: flicker not measured

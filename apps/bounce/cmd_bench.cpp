@@ -1,5 +1,5 @@
 // bounce bench: many frames of a scene; mean and standard deviation per stage after warm-up;
-// --flicker and --settle add the temporal metrics (bounce/metrics/temporal_runs.h).
+// --flicker and --settle add the temporal metrics (bounce/eval/temporal_runs.h).
 #include <fmt/format.h>
 
 #include <thread>
@@ -7,7 +7,7 @@
 #include "bench_json.h"
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
-#include "bounce/metrics/temporal_runs.h"
+#include "bounce/eval/temporal_runs.h"
 #include "bounce/scene/load.h"
 #include "options.h"
 #include "report.h"

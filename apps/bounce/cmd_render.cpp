@@ -7,6 +7,7 @@
 #include "bounce/core/image_io.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/registry.h"
 #include "options.h"
 #include "report.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "app/cli_test_util.h"
-#include "bounce/metrics/temporal_runs.h"
+#include "bounce/eval/temporal_runs.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
 

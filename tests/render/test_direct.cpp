@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
 #include "bounce/techniques/registry.h"
 #include "render/render_test_util.h"

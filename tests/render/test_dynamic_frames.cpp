@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bounce/core/color.h"
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "bounce/core/color.h"
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "render/render_test_util.h"

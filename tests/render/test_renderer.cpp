@@ -6,6 +6,8 @@
 #include "bounce/techniques/registry.h"
 #include "render/render_test_util.h"
 #include "scene/hand_built_scenes.h"
+#include "bounce/core/parallel.h"
+#include "bounce/eval/render_image.h"
 
 namespace bounce {
 namespace {

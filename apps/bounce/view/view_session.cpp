@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "bounce/core/error.h"
-#include "bounce/render/technique.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_edit.h"
 #include "bounce/techniques/registry.h"

@@ -1,5 +1,5 @@
 // Uses the installed library: renders the built-in Cornell box at a tiny size.
-#include <bounce/render/renderer.h>
+#include <bounce/eval/render_image.h>
 #include <bounce/scene/load.h>
 
 #include <cstdio>

@@ -1,6 +1,6 @@
 // Temporal metrics over sequences of linear images: flicker on a static scene (DESIGN.md
 // "Metrics", temporal stability) and the settle time of indirect light after a change.
-// Plain functions over images; src/bounce/metrics/temporal_runs.h renders the sequences.
+// Plain functions over images; src/bounce/eval/temporal_runs.h renders the sequences.
 #pragma once
 
 #include <span>

@@ -5,7 +5,6 @@
 #include "bounce/core/qmc.h"
 #include "bounce/core/tonemap.h"
 #include "bounce/render/direct.h"
-#include "bounce/techniques/registry.h"
 
 namespace bounce {
 
@@ -140,18 +139,6 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   }
   ++frame_index_;
   return f;
-}
-
-Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
-                   int spp) {
-  if (spp <= 0) fail("samples per pixel must be positive (got {})", spp);
-  auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_technique(technique));
-  FrameSettings s = settings;
-  s.jitter = spp > 1;
-  s.accumulate = spp > 1;
-  for (int k = 0; k + 1 < spp; ++k) renderer.render(scene.camera, s);
-  return renderer.render(scene.camera, s).color;
 }
 
 }  // namespace bounce

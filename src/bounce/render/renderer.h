@@ -94,9 +94,4 @@ class Renderer {
   RunningAverage direct_average_, indirect_average_;
 };
 
-// Renders `spp` jittered frames of the scene's own camera, accumulating at rest, and returns the
-// last (converged) frame's linear colour.
-Image render_image(const Scene& scene, const std::string& technique, const FrameSettings& settings,
-                   int spp = 1);
-
 }  // namespace bounce

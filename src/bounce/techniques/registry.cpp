@@ -1,4 +1,6 @@
 // The technique registry: the one place that maps names to implementations.
+#include "bounce/techniques/registry.h"
+
 #include <functional>
 #include <utility>
 

@@ -1,6 +1,7 @@
 // tiled converges towards the path-traced reference as photons grow and the radius shrinks.
 #include <gtest/gtest.h>
 
+#include "bounce/eval/render_image.h"
 #include "bounce/metrics/image_metrics.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"

@@ -1,4 +1,4 @@
-#include "bounce/metrics/temporal_runs.h"
+#include "bounce/eval/temporal_runs.h"
 
 #include <algorithm>
 

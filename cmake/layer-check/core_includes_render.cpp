@@ -1,0 +1,2 @@
+// Must NOT compile: compiled as part of the core layer, it reaches up into render.
+#include "bounce/render/renderer.h"
