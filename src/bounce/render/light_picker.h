@@ -4,11 +4,43 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
+#include "bounce/core/device.h"
 #include "bounce/scene/scene.h"
 
 namespace bounce {
+
+// The pick as plain data for kernels: the cdf and pmf arrays of a LightPicker.
+struct LightPickerView {
+  const float* cdf = nullptr;
+  const float* pmf = nullptr;
+  uint32_t count = 0;        // entries; 0 when nothing emits
+  uint32_t light_count = 0;  // entries below this are Scene::lights, the rest area lights
+
+  BOUNCE_HD bool empty() const { return count == 0; }
+  // The entry that u in [0, 1) selects (binary search over the cdf: the first entry above u).
+  BOUNCE_HD uint32_t pick(float u) const {
+    uint32_t lo = 0, hi = count - 1;
+    while (lo < hi) {
+      const uint32_t mid = (lo + hi) / 2;
+      if (u < cdf[mid])
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    return lo;
+  }
+  // Stretches u, which picked `entry`, back over [0, 1): the rest of the sample stays
+  // stratified when u is reused to place a point on the light.
+  BOUNCE_HD float remap(uint32_t entry, float u) const {
+    const float lo = entry == 0 ? 0.0f : cdf[entry - 1];
+    const float span = cdf[entry] - lo;
+    return span > 0.0f ? glm::clamp((u - lo) / span, 0.0f, 0.99999994f) : 0.5f;
+  }
+};
+static_assert(std::is_trivially_copyable_v<LightPickerView>);
 
 struct LightPicker {
   // Entries are Scene::lights (0 .. light_count - 1), then Scene::area_lights.
@@ -21,26 +53,14 @@ struct LightPicker {
 
   static LightPicker build(const Scene& scene);
 
+  LightPickerView view() const {
+    return {cdf.data(), pmf.data(), uint32_t(cdf.size()), light_count};
+  }
   bool empty() const { return cdf.empty(); }
   // The entry that u in [0, 1) selects (binary search over the cdf).
-  uint32_t pick(float u) const {
-    uint32_t lo = 0, hi = uint32_t(cdf.size()) - 1;
-    while (lo < hi) {
-      const uint32_t mid = (lo + hi) / 2;
-      if (u < cdf[mid])
-        hi = mid;
-      else
-        lo = mid + 1;
-    }
-    return lo;
-  }
-  // Stretches u, which picked `entry`, back over [0, 1): the rest of the sample stays
-  // stratified when u is reused to place a point on the light.
-  float remap(uint32_t entry, float u) const {
-    const float lo = entry == 0 ? 0.0f : cdf[entry - 1];
-    const float span = cdf[entry] - lo;
-    return span > 0.0f ? glm::clamp((u - lo) / span, 0.0f, 0.99999994f) : 0.5f;
-  }
+  uint32_t pick(float u) const { return view().pick(u); }
+  // Stretches u, which picked `entry`, back over [0, 1) (LightPickerView::remap).
+  float remap(uint32_t entry, float u) const { return view().remap(entry, u); }
   float light_pmf(uint32_t light) const { return empty() ? 0.0f : pmf[light]; }
   float area_light_pmf(uint32_t area_light) const {
     return empty() ? 0.0f : pmf[light_count + area_light];

@@ -31,7 +31,8 @@ void Renderer::animate(Scene& scene, float t) {
 
 void Renderer::update_scene() {
   if (!pending_.any()) return;
-  if (pending_.geometry()) tracer_.update(scene_, pending_.moved_meshes);
+  // Sphere lights are trace geometry: a light change updates the tracer too.
+  if (pending_.geometry() || pending_.lights) tracer_.update(scene_, pending_.moved_meshes);
   technique_->scene_changed(scene_, tracer_);
   direct_frames_ = 0;
   pending_ = SceneChange{};
