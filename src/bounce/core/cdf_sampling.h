@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
@@ -17,7 +18,7 @@ struct CdfSample {
 
 // u, which fell in the interval of `entry`, stretched back over [0, 1) within that interval, so
 // that the caller can reuse the same number inside the entry and keep its stratification.
-inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
+BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
   const float start = entry == 0 ? 0.0f : cdf[entry - 1];
   const float span = cdf[entry] - start;
   // The clamp keeps u below 1 when rounding (or u past the table's end) would reach it.
@@ -27,7 +28,7 @@ inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
 // Entry k owns [cdf[k - 1], cdf[k]) (cdf[-1] = 0), so u on a boundary goes to the entry above it
 // and an entry of zero probability is never chosen; u at or above cdf[count - 1] gives the last
 // entry. count must be at least 1; cdf must not decrease.
-inline CdfSample sample_cdf(const float* cdf, size_t count, float u) {
+BOUNCE_HD inline CdfSample sample_cdf(const float* cdf, size_t count, float u) {
   uint32_t lo = 0, hi = uint32_t(count) - 1;
   while (lo < hi) {
     const uint32_t mid = (lo + hi) / 2;

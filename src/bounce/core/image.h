@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "bounce/core/image_view.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
@@ -22,6 +23,8 @@ class Image {
   vec3* data() { return pixels_.data(); }
   const vec3* data() const { return pixels_.data(); }
   std::vector<vec3>& pixels() { return pixels_; }
+  ImageView view() { return {pixels_.data(), width_, height_}; }
+  ConstImageView view() const { return {pixels_.data(), width_, height_}; }
   const std::vector<vec3>& pixels() const { return pixels_; }
 
  private:

@@ -5,21 +5,22 @@
 #include <cmath>
 #include <cstdint>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
 
-inline vec2 sign_not_zero(vec2 v) {
+BOUNCE_HD inline vec2 sign_not_zero(vec2 v) {
   return {v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f};
 }
 
 // Unit vector -> point of [-1, 1]^2.
-inline vec2 oct_encode(vec3 v) {
+BOUNCE_HD inline vec2 oct_encode(vec3 v) {
   const vec2 p = vec2(v.x, v.y) * (1.0f / (std::abs(v.x) + std::abs(v.y) + std::abs(v.z)));
   return v.z <= 0.0f ? (vec2(1.0f) - glm::abs(vec2(p.y, p.x))) * sign_not_zero(p) : p;
 }
 
-inline vec3 oct_decode(vec2 e) {
+BOUNCE_HD inline vec3 oct_decode(vec2 e) {
   vec3 v(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
   if (v.z < 0.0f) {
     const vec2 xy = (vec2(1.0f) - glm::abs(vec2(v.y, v.x))) * sign_not_zero(vec2(v.x, v.y));
@@ -29,7 +30,7 @@ inline vec3 oct_decode(vec2 e) {
   return glm::normalize(v);
 }
 
-inline uint32_t oct_pack(vec3 v) {
+BOUNCE_HD inline uint32_t oct_pack(vec3 v) {
   const vec2 e = glm::clamp(oct_encode(v), vec2(-1.0f), vec2(1.0f));
   // Round half away from zero by hand: std::lround is a library call here.
   const auto q = [](float f) {
@@ -39,7 +40,7 @@ inline uint32_t oct_pack(vec3 v) {
   return q(e.x) | (q(e.y) << 16);
 }
 
-inline vec3 oct_unpack(uint32_t packed) {
+BOUNCE_HD inline vec3 oct_unpack(uint32_t packed) {
   const auto d = [](uint32_t bits) { return float(int16_t(uint16_t(bits))) / 32767.0f; };
   return oct_decode(vec2(d(packed & 0xFFFF), d(packed >> 16)));
 }

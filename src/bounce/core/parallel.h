@@ -1,5 +1,6 @@
 // parallel_for: the one way bounce spreads work over cores. Kernels are plain callables over an
-// index (or a tile), so the same bodies can later be launched by a CUDA backend.
+// index (1D) or a pixel (2D), so the same bodies can later be launched by a CUDA backend. The
+// parallel primitives built on it (scan, reduce, sort) are in parallel_primitives.h.
 #pragma once
 
 #include <algorithm>
@@ -22,7 +23,27 @@ void parallel_for(size_t n, Body&& body, size_t grain = 256) {
                     });
 }
 
-// Calls body(x0, y0, x1, y1) for every tile of a width x height image (tile x tile pixels).
+// Calls body(x, y) for every pixel of a width x height grid: the 2D launch of a per-pixel kernel.
+// Work goes out in 8 x 8 tiles, so neighbouring pixels run on one core (locality).
+template <typename Body>
+void parallel_for_2d(int width, int height, Body&& body) {
+  constexpr int kTile = 8;
+  const int tiles_x = (width + kTile - 1) / kTile;
+  const int tiles_y = (height + kTile - 1) / kTile;
+  tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+                    [&](const tbb::blocked_range<int>& r) {
+                      for (int t = r.begin(); t != r.end(); ++t) {
+                        const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+                        const int x1 = std::min(x0 + kTile, width);
+                        const int y1 = std::min(y0 + kTile, height);
+                        for (int y = y0; y < y1; ++y)
+                          for (int x = x0; x < x1; ++x) body(x, y);
+                      }
+                    });
+}
+
+// Calls body(x0, y0, x1, y1) for every tile of a width x height image (tile x tile pixels), for
+// host code that batches a tile's work (rays handed to the Tracer as one stream).
 template <typename Body>
 void parallel_for_tiles(int width, int height, int tile, Body&& body) {
   const int tiles_x = (width + tile - 1) / tile;

@@ -4,11 +4,12 @@
 
 #include <cstdint>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
 
-inline uint32_t reverse_bits(uint32_t bits) {
+BOUNCE_HD inline uint32_t reverse_bits(uint32_t bits) {
   bits = (bits << 16u) | (bits >> 16u);
   bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
   bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
@@ -18,17 +19,17 @@ inline uint32_t reverse_bits(uint32_t bits) {
 }
 
 // Converts 32 fixed-point bits to a float in [0, 1), rounding down so 1 is never returned.
-inline float bits_to_unit_float(uint32_t bits) {
+BOUNCE_HD inline float bits_to_unit_float(uint32_t bits) {
   return float(bits >> 8) * (1.0f / 16777216.0f);
 }
 
 // Van der Corput sequence: the base-2 radical inverse of i.
-inline float radical_inverse2(uint32_t i) {
+BOUNCE_HD inline float radical_inverse2(uint32_t i) {
   return bits_to_unit_float(reverse_bits(i));
 }
 
 // Radical inverse of i in any base >= 2 (double precision for long sequences).
-inline float radical_inverse(uint32_t base, uint32_t i) {
+BOUNCE_HD inline float radical_inverse(uint32_t base, uint32_t i) {
   const double inv_base = 1.0 / base;
   double inv = inv_base, result = 0.0;
   while (i > 0) {
@@ -40,7 +41,7 @@ inline float radical_inverse(uint32_t base, uint32_t i) {
 }
 
 // Point i of an N-point 2D Hammersley set: (i / N, radical_inverse2(i)).
-inline vec2 hammersley(uint32_t i, uint32_t n) {
+BOUNCE_HD inline vec2 hammersley(uint32_t i, uint32_t n) {
   return {float(i) / float(n), radical_inverse2(i)};
 }
 
@@ -49,7 +50,7 @@ float halton(uint32_t dim, uint32_t i);
 
 // The first two dimensions of the Sobol' sequence: a (0,2)-sequence in base 2, so every
 // power-of-two prefix is stratified into every elementary interval.
-inline vec2 sobol2(uint32_t i) {
+BOUNCE_HD inline vec2 sobol2(uint32_t i) {
   uint32_t y = 0;
   // Dimension 1's generator matrix columns are v_k = v_{k-1} ^ (v_{k-1} >> 1), v_0 = 1 << 31.
   for (uint32_t k = i, v = 1u << 31; k; k >>= 1, v ^= v >> 1)
@@ -58,7 +59,7 @@ inline vec2 sobol2(uint32_t i) {
 }
 
 // Cranley-Patterson rotation: shifts a point set by `offset` modulo 1 (per-pixel decorrelation).
-inline vec2 rotate_unit(vec2 u, vec2 offset) {
+BOUNCE_HD inline vec2 rotate_unit(vec2 u, vec2 offset) {
   return glm::fract(u + offset);
 }
 

@@ -6,10 +6,9 @@
 #include <vector>
 
 #include "bounce/core/math.h"
+#include "bounce/render/gbuffer_view.h"
 
 namespace bounce {
-
-inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
 
 struct GBuffer {
   int width = 0;
@@ -36,6 +35,33 @@ struct GBuffer {
   void resize(int w, int h);
   size_t size() const { return size_t(width) * height; }
   bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
+
+  GBufferView view() {
+    return {position.data(),
+            normal.data(),
+            geometric_normal.data(),
+            albedo.data(),
+            roughness.data(),
+            f0.data(),
+            emission.data(),
+            depth.data(),
+            primitive.data(),
+            width,
+            height};
+  }
+  ConstGBufferView view() const {
+    return {position.data(),
+            normal.data(),
+            geometric_normal.data(),
+            albedo.data(),
+            roughness.data(),
+            f0.data(),
+            emission.data(),
+            depth.data(),
+            primitive.data(),
+            width,
+            height};
+  }
 };
 
 }  // namespace bounce

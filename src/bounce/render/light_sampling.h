@@ -6,11 +6,14 @@
 #include <limits>
 
 #include "bounce/core/cdf_sampling.h"
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/core/sampling.h"
 #include "bounce/render/brdf.h"
 #include "bounce/render/sphere_cone.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_view.h"
+#include "bounce/trace/ray_sphere.h"
 
 namespace bounce {
 
@@ -68,17 +71,44 @@ struct AreaLightPoint {
   vec3 position;
   vec3 normal;
 };
+
+// The triangle of an area light that u.x picks from its area cdf (core/cdf_sampling.h), and u
+// with u.x stretched back over [0, 1) within that triangle's interval.
+struct AreaLightTriangle {
+  uint32_t index;
+  vec2 v;
+};
+BOUNCE_HD inline AreaLightTriangle pick_area_light_triangle(const float* cdf, uint32_t count,
+                                                            vec2 u) {
+  const CdfSample pick = sample_cdf(cdf, count, u.x);
+  return {pick.entry, vec2(pick.u, u.y)};
+}
+
+// A uniform point on triangle (p0, p1, p2) from v in [0, 1)^2.
+BOUNCE_HD inline vec3 point_on_triangle(vec3 p0, vec3 p1, vec3 p2, vec2 v) {
+  const vec2 b = sample_uniform_triangle(v);
+  return (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+}
+
+BOUNCE_HD inline AreaLightPoint sample_area_light_point(const SceneView& scene,
+                                                        const AreaLightView& light, vec2 u) {
+  const AreaLightTriangle pick = pick_area_light_triangle(light.cdf, light.triangle_count, u);
+  const TriangleRef ref = light.triangles[pick.index];
+  const MeshView& mesh = scene.meshes[ref.mesh];
+  const uvec3 tri = mesh.triangles[ref.triangle];
+  return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
+                            pick.v),
+          light.normals[pick.index]};
+}
 inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLight& light, vec2 u) {
-  const CdfSample pick = sample_cdf(light.cdf.data(), light.cdf.size(), u.x);
-  const uint32_t k = pick.entry;
-  const vec2 v(pick.u, u.y);
-  const TriangleRef ref = light.triangles[k];
+  const AreaLightTriangle pick =
+      pick_area_light_triangle(light.cdf.data(), uint32_t(light.cdf.size()), u);
+  const TriangleRef ref = light.triangles[pick.index];
   const Mesh& mesh = scene.meshes[ref.mesh];
   const uvec3 tri = mesh.triangles[ref.triangle];
-  const vec2 b = sample_uniform_triangle(v);
-  return {(1.0f - b.x - b.y) * mesh.positions[tri.x] + b.x * mesh.positions[tri.y] +
-              b.y * mesh.positions[tri.z],
-          light.normals[k]};
+  return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
+                            pick.v),
+          light.normals[pick.index]};
 }
 
 // Area light made of emissive triangles, sampled by area. One-sided emission.
@@ -97,9 +127,9 @@ inline LightSample sample_area_light(const Scene& scene, const AreaLight& light,
   return s;
 }
 
-// Distance along a unit-direction ray to the nearest sphere light's surface in (tmin, tmax),
-// with the light's index; index -1 when none is hit. Sphere lights are not in the Tracer's
-// geometry, so primary rays test them here to show them.
+// Distance along a unit-direction ray to the nearest sphere light's surface in (0, tmax], with
+// the light's index; index -1 when none is hit. tmax itself counts, so that a sphere light the
+// Tracer reported at hit.t is found again (both use ray_sphere_distance, bit for bit).
 struct SphereLightHit {
   int light = -1;
   float t = 0.0f;
@@ -110,16 +140,9 @@ inline SphereLightHit intersect_sphere_lights(const Scene& scene, vec3 origin, v
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (l.type != LightType::kSphere) continue;
-    const vec3 oc = l.position - origin;
-    const float b = glm::dot(oc, direction);
-    const float disc = b * b - (glm::dot(oc, oc) - l.radius * l.radius);
-    if (disc < 0.0f) continue;
-    const float root = std::sqrt(disc);
-    const float t = b - root > 0.0f ? b - root : b + root;
-    if (t > 0.0f && t < tmax) {
-      best = {int(i), t};
-      tmax = t;
-    }
+    const float t = ray_sphere_distance(l.position, l.radius, origin, direction, 0.0f);
+    if (!(t < std::numeric_limits<float>::infinity())) continue;
+    if (best.light < 0 ? t <= tmax : t < best.t) best = {int(i), t};
   }
   return best;
 }

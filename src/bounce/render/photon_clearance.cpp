@@ -9,7 +9,7 @@ namespace bounce {
 
 uint64_t compute_photon_clearance(const Tracer& tracer, float radius, PhotonBuffer& photons) {
   const size_t n = photons.size();
-  photons.clearance.resize(n);
+  photons.clearance.resize(n * kClearanceRays);
   photons.min_clearance.resize(n);
   constexpr size_t kBatch = 32;  // photons per tracer call
   parallel_for((n + kBatch - 1) / kBatch,
@@ -30,7 +30,8 @@ uint64_t compute_photon_clearance(const Tracer& tracer, float radius, PhotonBuff
                                   std::span<Hit>(hits.data(), count), false);
                  for (size_t i = begin, r = 0; i < end; ++i)
                    for (int k = 0; k < kClearanceRays; ++k, ++r)
-                     photons.clearance[i][k] = hits[r].valid() ? hits[r].t : radius;
+                     photons.clearance[i * kClearanceRays + k] =
+                         hits[r].valid() ? hits[r].t : radius;
                },
                4);
   return uint64_t(n) * kClearanceRays;

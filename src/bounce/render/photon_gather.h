@@ -31,7 +31,8 @@ inline float gather_weight(const PhotonBuffer& photons, size_t i, vec3 x, vec3 n
   // The visibility polygon matters only beyond the photon's nearest obstacle.
   if (s.clearance && !photons.clearance.empty() &&
       dist2 > photons.min_clearance[i] * photons.min_clearance[i] &&
-      !within_clearance(x, photons.position[i], photons.normal_dir[i], photons.clearance[i].data()))
+      !within_clearance(x, photons.position[i], photons.normal_dir[i],
+                        photons.clearance.data() + i * kClearanceRays))
     return 0.0f;
   return 1.0f - std::sqrt(dist2) / s.radius;
 }

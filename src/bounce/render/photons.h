@@ -1,34 +1,31 @@
 // Photons as a structure of arrays: what photon tracing deposits and the density estimators read.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "bounce/core/math.h"
 #include "bounce/core/octahedral.h"
 #include "bounce/core/parallel.h"
+#include "bounce/render/photon_view.h"
 
 namespace bounce {
-
-// Rays cast by each photon along its tangent plane to find nearby occluders (see
-// photon_clearance.h); a gather point is accepted only within this visibility polygon.
-inline constexpr int kClearanceRays = 8;
 
 struct PhotonBuffer {
   std::vector<vec3> position;
   std::vector<vec3> flux;          // W, per channel
   std::vector<uint32_t> incident;  // octahedral-packed direction of travel towards the surface
   std::vector<uint32_t> normal;    // octahedral-packed surface normal, on the side it arrived from
-  // Free distance along each tangent ray (kClearanceRays per photon) and the smallest of them;
-  // empty when not computed.
-  std::vector<std::array<float, kClearanceRays>> clearance;
+  // Free distance along each tangent ray (kClearanceRays per photon, photon by photon) and the
+  // smallest of them; empty when not computed.
+  std::vector<float> clearance;
   std::vector<float> min_clearance;
   // incident and normal decoded once per pass for the gathers (unpack_directions()).
   std::vector<vec3> incident_dir;
   std::vector<vec3> normal_dir;
 
   size_t size() const { return position.size(); }
+  bool has_clearance() const { return !clearance.empty(); }
   void clear() {
     position.clear();
     flux.clear();
@@ -45,6 +42,18 @@ struct PhotonBuffer {
     flux.resize(n);
     incident.resize(n);
     normal.resize(n);
+  }
+
+  PhotonView view() { return view_of<false>(*this); }
+  ConstPhotonView view() const { return view_of<true>(*this); }
+
+ private:
+  template <bool kConst, typename Buffer>
+  static PhotonViewT<kConst> view_of(Buffer& b) {
+    const auto data = [](auto& v) { return v.empty() ? nullptr : v.data(); };
+    return {data(b.position),     data(b.flux),       data(b.incident),
+            data(b.normal),       data(b.clearance),  data(b.min_clearance),
+            data(b.incident_dir), data(b.normal_dir), uint32_t(b.size())};
   }
 };
 

@@ -81,7 +81,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   const bool rest = settings.accumulate && !change.any();
   {
     ScopedStage stage(f.times, "scene");
-    if (!change.moved_meshes.empty()) tracer_.update(scene_, change.moved_meshes);
+    // Sphere lights are trace geometry: a light change updates the tracer too.
+    if (!change.moved_meshes.empty() || change.lights) tracer_.update(scene_, change.moved_meshes);
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
@@ -14,11 +15,11 @@ struct SphereCone {
   float cos_max = 1.0f;        // cosine of the cone's half-angle
   float one_minus_cos = 0.0f;  // 1 - cos_max, without the cancellation of a small sphere
 
-  float solid_angle() const { return kTwoPi * one_minus_cos; }
+  BOUNCE_HD float solid_angle() const { return kTwoPi * one_minus_cos; }
 };
 
 // d2: squared distance from the point to the sphere's centre; r2: the squared radius.
-inline SphereCone sphere_cone(float d2, float r2) {
+BOUNCE_HD inline SphereCone sphere_cone(float d2, float r2) {
   if (d2 <= r2) return {};
   const float sin2_max = r2 / d2;
   const float cos_max = std::sqrt(1.0f - sin2_max);

@@ -2,6 +2,7 @@
 // (x, y) covers [x, x+1) x [y, y+1) and its centre is (x + 0.5, y + 0.5).
 #pragma once
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
@@ -28,13 +29,13 @@ struct CameraRays {
 
   static CameraRays from(const Camera& camera, int width, int height);
   // Unit direction through the continuous pixel position (px, py).
-  vec3 direction(float px, float py) const {
+  BOUNCE_HD vec3 direction(float px, float py) const {
     const float sx = 2.0f * px / width - 1.0f;
     const float sy = 1.0f - 2.0f * py / height;
     return glm::normalize(forward + sx * right + sy * up);
   }
   // Continuous pixel position of a world point in front of the camera (inverse of direction).
-  vec2 project(vec3 p) const {
+  BOUNCE_HD vec2 project(vec3 p) const {
     const vec3 d = p - origin;
     const float z = glm::dot(d, forward);
     const float sx = glm::dot(d, right) / (z * glm::dot(right, right));

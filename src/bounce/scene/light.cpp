@@ -51,21 +51,6 @@ Light Light::sphere(vec3 centre, float radius, vec3 radiance) {
   return l;
 }
 
-vec3 Light::power(float scene_radius) const {
-  switch (type) {
-    case LightType::kPoint:
-      return intensity * (4.0f * kPi);
-    case LightType::kSpot:
-      // The smoothstep in cos(theta) integrates to half the width of its band.
-      return intensity * (kTwoPi * (1.0f - 0.5f * (cos_inner + cos_outer)));
-    case LightType::kDirectional:
-      return irradiance * (kPi * scene_radius * scene_radius);
-    case LightType::kSphere:
-      return radiance * (kPi * 4.0f * kPi * radius * radius);
-  }
-  return vec3(0.0f);
-}
-
 const char* Light::type_name() const {
   switch (type) {
     case LightType::kPoint:

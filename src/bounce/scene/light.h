@@ -3,15 +3,16 @@
 
 #include <string>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
 
 enum class LightType { kPoint, kSpot, kDirectional, kSphere };
 
-struct Light {
+// Everything a light is except its name: plain data that kernels copy and read (SceneView).
+struct LightRecord {
   LightType type = LightType::kPoint;
-  std::string name;
   vec3 position{0.0f};       // point, spot, sphere (centre)
   vec3 direction{0, -1, 0};  // spot: the axis it shines along; directional: travel direction
   vec3 intensity{0.0f};      // point, spot: radiant intensity, W/sr
@@ -21,6 +22,29 @@ struct Light {
   float cos_inner = 1.0f;    // spot: full intensity inside this cone
   float cos_outer = 0.0f;    // spot: no light outside this cone (smoothstep between)
 
+  bool operator==(const LightRecord&) const = default;
+
+  // Radiant power in W per channel. A directional light's power depends on the area it lights:
+  // scene_radius is the radius of a disk that covers the scene.
+  BOUNCE_HD vec3 power(float scene_radius) const {
+    switch (type) {
+      case LightType::kPoint:
+        return intensity * (4.0f * kPi);
+      case LightType::kSpot:
+        // The smoothstep in cos(theta) integrates to half the width of its band.
+        return intensity * (kTwoPi * (1.0f - 0.5f * (cos_inner + cos_outer)));
+      case LightType::kDirectional:
+        return irradiance * (kPi * scene_radius * scene_radius);
+      case LightType::kSphere:
+        return radiance * (kPi * 4.0f * kPi * radius * radius);
+    }
+    return vec3(0.0f);
+  }
+};
+
+struct Light : LightRecord {
+  std::string name;
+
   bool operator==(const Light&) const = default;
 
   static Light point(vec3 position, vec3 intensity);
@@ -29,9 +53,6 @@ struct Light {
   static Light directional(vec3 direction, vec3 irradiance);
   static Light sphere(vec3 centre, float radius, vec3 radiance);
 
-  // Radiant power in W per channel. A directional light's power depends on the area it lights:
-  // scene_radius is the radius of a disk that covers the scene.
-  vec3 power(float scene_radius) const;
   // The colour that sets this light's brightness: intensity (point, spot), irradiance
   // (directional) or radiance (sphere).
   vec3& emission();
@@ -40,7 +61,7 @@ struct Light {
 };
 
 // The spot's angular falloff: 1 inside the inner cone, 0 outside the outer, smooth between.
-inline float spot_falloff(const Light& l, vec3 dir_from_light) {
+BOUNCE_HD inline float spot_falloff(const LightRecord& l, vec3 dir_from_light) {
   const float c = glm::dot(dir_from_light, l.direction);
   if (c >= l.cos_inner) return 1.0f;
   if (c <= l.cos_outer) return 0.0f;

@@ -5,9 +5,31 @@
 #include <string>
 #include <vector>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
+
+// Unnormalised geometric normal of a triangle by its winding: cross(p1 - p0, p2 - p0).
+BOUNCE_HD inline vec3 triangle_normal_area2(vec3 p0, vec3 p1, vec3 p2) {
+  return glm::cross(p1 - p0, p2 - p0);
+}
+
+// A mesh's arrays as plain pointers for kernels (SceneView holds one per mesh).
+struct MeshView {
+  const vec3* positions = nullptr;
+  const vec3* normals = nullptr;  // per vertex, or null for flat shading
+  const vec2* uvs = nullptr;      // per vertex, or null
+  const uvec3* triangles = nullptr;
+  const uint32_t* materials = nullptr;  // per triangle, index into the scene's materials
+  uint32_t vertex_count = 0;
+  uint32_t triangle_count = 0;
+
+  BOUNCE_HD vec3 face_normal_area2(uint32_t t) const {
+    const uvec3 i = triangles[t];
+    return triangle_normal_area2(positions[i.x], positions[i.y], positions[i.z]);
+  }
+};
 
 struct Mesh {
   std::string name;
@@ -23,7 +45,17 @@ struct Mesh {
   // Unnormalised geometric normal of triangle t by its winding: cross(p1 - p0, p2 - p0).
   vec3 face_normal_area2(uint32_t t) const {
     const uvec3 i = triangles[t];
-    return glm::cross(positions[i.y] - positions[i.x], positions[i.z] - positions[i.x]);
+    return triangle_normal_area2(positions[i.x], positions[i.y], positions[i.z]);
+  }
+  // Points into this mesh's arrays: valid until they are resized.
+  MeshView view() const {
+    return {positions.data(),
+            normals.empty() ? nullptr : normals.data(),
+            uvs.empty() ? nullptr : uvs.data(),
+            triangles.data(),
+            materials.data(),
+            uint32_t(positions.size()),
+            uint32_t(triangles.size())};
   }
 };
 

@@ -178,7 +178,7 @@ size_t Scene::triangle_count() const {
   return n;
 }
 
-vec3 Scene::albedo(const Material& material, vec2 uv) const {
+vec3 Scene::albedo(const MaterialRecord& material, vec2 uv) const {
   if (material.albedo_texture < 0) return material.albedo;
   return material.albedo * textures[material.albedo_texture].sample(uv);
 }
@@ -191,20 +191,6 @@ void Mesh::transform(const mat4& m) {
   // A mirroring transform flips the winding's sense; swap two vertices to keep front faces.
   if (glm::determinant(mat3(m)) < 0.0f)
     for (auto& t : triangles) std::swap(t.y, t.z);
-}
-
-vec3 Texture::sample(vec2 uv) const {
-  const float x = (uv.x - std::floor(uv.x)) * width - 0.5f;
-  const float y = (uv.y - std::floor(uv.y)) * height - 0.5f;
-  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  const float fx = x - x0, fy = y - y0;
-  auto texel = [&](int tx, int ty) {
-    tx = ((tx % width) + width) % width;
-    ty = ((ty % height) + height) % height;
-    return texels[size_t(ty) * width + tx];
-  };
-  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
-                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
 }
 
 CameraRays CameraRays::from(const Camera& camera, int width, int height) {

@@ -10,15 +10,10 @@
 #include "bounce/scene/light.h"
 #include "bounce/scene/material.h"
 #include "bounce/scene/mesh.h"
+#include "bounce/scene/scene_view.h"
 #include "bounce/scene/texture.h"
 
 namespace bounce {
-
-// One triangle of a mesh.
-struct TriangleRef {
-  uint32_t mesh = 0;
-  uint32_t triangle = 0;
-};
 
 // The emissive triangles of one mesh that share a material, sampled as one area light
 // (one-sided: they emit from the front face, the side their winding's normal points to).
@@ -59,7 +54,7 @@ struct Scene {
 
   size_t triangle_count() const;
   // Diffuse albedo of a material at a texture coordinate.
-  vec3 albedo(const Material& material, vec2 uv) const;
+  vec3 albedo(const MaterialRecord& material, vec2 uv) const;
 };
 
 }  // namespace bounce

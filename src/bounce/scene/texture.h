@@ -4,9 +4,32 @@
 #include <string>
 #include <vector>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
+
+// The texels and the lookup, as plain data for kernels; Texture samples through it too.
+struct TextureView {
+  const vec3* texels = nullptr;  // row-major from the top row, linear RGB
+  int width = 0;
+  int height = 0;
+
+  // Bilinear, repeat wrapping; (0, 0) is the top-left texel's corner, as in glTF.
+  BOUNCE_HD vec3 sample(vec2 uv) const {
+    const float x = (uv.x - std::floor(uv.x)) * float(width) - 0.5f;
+    const float y = (uv.y - std::floor(uv.y)) * float(height) - 0.5f;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const float fx = x - float(x0), fy = y - float(y0);
+    const auto texel = [&](int tx, int ty) {
+      tx = ((tx % width) + width) % width;
+      ty = ((ty % height) + height) % height;
+      return texels[size_t(ty) * size_t(width) + size_t(tx)];
+    };
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                    glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+  }
+};
 
 // Texture coordinates follow glTF: (0, 0) is the top-left texel of the image.
 struct Texture {
@@ -15,7 +38,8 @@ struct Texture {
   int height = 0;
   std::vector<vec3> texels;  // row-major from the top row, linear RGB
 
-  vec3 sample(vec2 uv) const;
+  TextureView view() const { return {texels.data(), width, height}; }
+  vec3 sample(vec2 uv) const { return view().sample(uv); }
 };
 
 }  // namespace bounce

@@ -1,6 +1,7 @@
-// The CPU Tracer on Embree 3: one triangle geometry per mesh (geometry id = mesh index). Single
-// rays go through rtcIntersect1/rtcOccluded1, every span of rays through Embree's stream API
-// (rtcIntersect1M, rtcOccluded1M, flagged coherent or not), which measured faster here than our
+// The CPU Tracer on Embree 3: one triangle geometry per mesh (geometry id = mesh index), plus the
+// scene's sphere lights tested after Embree. Single rays go through the trace view
+// (rtcIntersect1/rtcOccluded1, also what kernels call), every span of rays through Embree's stream
+// API (rtcIntersect1M, rtcOccluded1M, flagged coherent or not), which measured faster here than our
 // own 8-wide packets and than single rays (docs/benchmarks.md).
 // A scene with animated meshes is built two-level (Embree's low scene quality): static meshes
 // keep their own high-quality BVHs and animated ones are refitted when their vertices move.
@@ -61,31 +62,8 @@ class EmbreeTracer final : public Tracer {
     rtcReleaseDevice(device_);
   }
 
-  Hit intersect(const Ray& ray) const override {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = to_embree(ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
-    Hit hit;
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      hit.t = rh.ray.tfar;
-      hit.mesh = rh.hit.geomID;
-      hit.triangle = rh.hit.primID;
-      hit.barycentric = {rh.hit.u, rh.hit.v};
-    }
-    return hit;
-  }
-
-  bool occluded(const Ray& ray) const override {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay r = to_embree(ray);
-    rtcOccluded1(scene_, &context, &r);
-    return r.tfar < 0.0f;  // Embree sets tfar to -inf on an occluded ray
-  }
+  Hit intersect(const Ray& ray) const override { return view().intersect(ray); }
+  bool occluded(const Ray& ray) const override { return view().occluded(ray); }
 
   void intersect(std::span<const Ray> rays, std::span<Hit> hits, bool coherent) const override {
     RTCIntersectContext context;
@@ -111,6 +89,7 @@ class EmbreeTracer final : public Tracer {
           hit.triangle = chunk[k].hit.primID;
           hit.barycentric = {chunk[k].hit.u, chunk[k].hit.v};
         }
+        closest_sphere(spheres_.data(), uint32_t(spheres_.size()), rays[base + k], hit);
       }
     }
   }
@@ -125,12 +104,20 @@ class EmbreeTracer final : public Tracer {
       const size_t n = std::min(kChunk, rays.size() - base);
       for (size_t k = 0; k < n; ++k) chunk[k] = to_embree(rays[base + k]);
       rtcOccluded1M(scene_, &context, chunk, unsigned(n), sizeof(RTCRay));
-      for (size_t k = 0; k < n; ++k) blocked[base + k] = chunk[k].tfar < 0.0f ? 1 : 0;
+      for (size_t k = 0; k < n; ++k)
+        blocked[base + k] =
+            chunk[k].tfar < 0.0f ||
+                    any_sphere(spheres_.data(), uint32_t(spheres_.size()), rays[base + k])
+                ? 1
+                : 0;
     }
   }
 
+  TraceView view() const override { return {scene_, spheres_.data(), uint32_t(spheres_.size())}; }
+
   void rebuild(const Scene& scene) override {
     Stopwatch watch;
+    spheres_ = trace_spheres(scene);
     if (scene_) rtcReleaseScene(scene_);
     scene_ = rtcNewScene(device_);
     std::vector<bool> animated(scene.meshes.size(), false);
@@ -151,6 +138,8 @@ class EmbreeTracer final : public Tracer {
   }
 
   void update(const Scene& scene, std::span<const uint32_t> moved_meshes) override {
+    spheres_ = trace_spheres(scene);
+    if (moved_meshes.empty()) return;
     for (uint32_t id : moved_meshes) {
       const Mesh& mesh = scene.meshes.at(id);
       if (id >= vertex_counts_.size() || vertex_counts_[id] != mesh.positions.size()) {
@@ -209,11 +198,38 @@ class EmbreeTracer final : public Tracer {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<size_t> vertex_counts_;  // per mesh, as attached
+  std::vector<TraceSphere> spheres_;   // the scene's sphere lights
   std::atomic<ssize_t> memory_{0};
   double build_ms_ = 0.0;
 };
 
 }  // namespace
+
+Hit host_intersect_triangles(const void* triangles, const Ray& ray) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray = to_embree(ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(RTCScene(const_cast<void*>(triangles)), &context, &rh);
+  Hit hit;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    hit.t = rh.ray.tfar;
+    hit.mesh = rh.hit.geomID;
+    hit.triangle = rh.hit.primID;
+    hit.barycentric = {rh.hit.u, rh.hit.v};
+  }
+  return hit;
+}
+
+bool host_occluded_triangles(const void* triangles, const Ray& ray) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = to_embree(ray);
+  rtcOccluded1(RTCScene(const_cast<void*>(triangles)), &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on an occluded ray
+}
 
 std::unique_ptr<Tracer> make_embree_tracer(const Scene& scene, BuildQuality quality) {
   return std::make_unique<EmbreeTracer>(scene, quality);

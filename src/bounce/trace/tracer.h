@@ -1,33 +1,19 @@
 // Tracer: the one narrow interface for ray queries. Embree implements it on the CPU; a BVH of our
-// own will implement it for CUDA. Hits name the mesh and the triangle within it.
+// own will implement it for CUDA. Hits name the mesh and the triangle within it, or the sphere
+// light the ray ended on: sphere lights are geometry for every query (see trace_view.h).
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "bounce/core/math.h"
 #include "bounce/scene/scene.h"
+#include "bounce/trace/ray.h"
+#include "bounce/trace/trace_view.h"
 
 namespace bounce {
-
-struct Ray {
-  vec3 origin{0.0f};
-  float tmin = 0.0f;
-  vec3 direction{0.0f, 0.0f, 1.0f};
-  float tmax = std::numeric_limits<float>::infinity();
-};
-
-struct Hit {
-  static constexpr uint32_t kNone = 0xFFFFFFFFu;
-  float t = std::numeric_limits<float>::infinity();
-  uint32_t mesh = kNone;
-  uint32_t triangle = 0;
-  vec2 barycentric{0.0f};  // weights of the triangle's vertices 1 and 2
-
-  bool valid() const { return mesh != kNone; }
-};
 
 struct TracerStats {
   size_t memory_bytes = 0;  // acceleration structure and scene copies
@@ -44,13 +30,19 @@ class Tracer {
   virtual void intersect(std::span<const Ray> rays, std::span<Hit> hits,
                          bool coherent = false) const = 0;
   virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> blocked) const = 0;
+  // The same queries for kernel bodies: a plain handle, valid until the next rebuild or update.
+  virtual TraceView view() const = 0;
   // Rebuilds after the scene's geometry changed.
   virtual void rebuild(const Scene& scene) = 0;
   // Catches up with meshes whose vertices moved (same vertex and triangle counts): the
-  // implementation refits their part of the acceleration structure where it can.
+  // implementation refits their part of the acceleration structure where it can. Also takes the
+  // sphere lights' current places and sizes, so call it when lights changed too (with no meshes).
   virtual void update(const Scene& scene, std::span<const uint32_t> moved_meshes) = 0;
   virtual TracerStats stats() const = 0;
 };
+
+// The scene's sphere lights as trace geometry, in light order.
+std::vector<TraceSphere> trace_spheres(const Scene& scene);
 
 enum class BuildQuality { kLow, kMedium, kHigh };
 

@@ -1,0 +1,41 @@
+// GBufferView: the G-buffer's arrays as pointers, for per-pixel kernels (GBuffer::view()).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "bounce/core/device.h"
+#include "bounce/core/math.h"
+
+namespace bounce {
+
+inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
+
+// Field by field as GBuffer (gbuffer.h), which documents them.
+template <bool kConst>
+struct GBufferViewT {
+  template <typename T>
+  using Ptr = maybe_const_t<T, kConst>*;
+
+  Ptr<vec3> position = nullptr;
+  Ptr<vec3> normal = nullptr;
+  Ptr<vec3> geometric_normal = nullptr;
+  Ptr<vec3> albedo = nullptr;
+  Ptr<float> roughness = nullptr;
+  Ptr<vec3> f0 = nullptr;
+  Ptr<vec3> emission = nullptr;
+  Ptr<float> depth = nullptr;
+  Ptr<uint32_t> primitive = nullptr;
+  int width = 0;
+  int height = 0;
+
+  BOUNCE_HD size_t size() const { return size_t(width) * size_t(height); }
+  BOUNCE_HD size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+  BOUNCE_HD bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
+};
+using GBufferView = GBufferViewT<false>;
+using ConstGBufferView = GBufferViewT<true>;
+static_assert(std::is_trivially_copyable_v<GBufferView>);
+
+}  // namespace bounce

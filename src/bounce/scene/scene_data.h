@@ -1,0 +1,68 @@
+// SceneData: the host-side owner of what a SceneView points to. The scene's arrays flattened
+// (every mesh's vertices in one array, every texture's texels in another, ...), so that a backend
+// can copy them to a device as they are. Rebuilt when the scene's layout changes; refreshed
+// cheaply (moved vertices, lights, materials) when only the contents change.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bounce/scene/scene.h"
+#include "bounce/scene/scene_view.h"
+
+namespace bounce {
+
+class SceneData {
+ public:
+  SceneData() = default;
+  // Views point into the arrays: moves keep them valid (vectors keep their buffers), copies
+  // would not.
+  SceneData(const SceneData&) = delete;
+  SceneData& operator=(const SceneData&) = delete;
+  SceneData(SceneData&&) = default;
+  SceneData& operator=(SceneData&&) = default;
+
+  static SceneData from(const Scene& scene);
+  // Copies everything from the scene (reusing the arrays' memory).
+  void build(const Scene& scene);
+  // Catches up with moved meshes (positions and normals only), lights, materials, area lights
+  // and bounds; rebuilds instead when the scene's layout (counts) changed.
+  void refresh(const Scene& scene, std::span<const uint32_t> moved_meshes);
+
+  // Valid until the next build, refresh or destruction.
+  SceneView view() const;
+
+ private:
+  bool same_layout(const Scene& scene) const;
+  void copy_small_arrays(const Scene& scene);  // materials, lights, area lights, bounds
+  void copy_vertices(const Scene& scene, uint32_t mesh);
+  void point_meshes();
+
+  // Where each mesh's arrays start in the flattened ones. Meshes without normals or uvs take
+  // no room in those arrays.
+  struct MeshRange {
+    size_t first_vertex = 0, first_normal = 0, first_uv = 0, first_triangle = 0;
+    uint32_t vertex_count = 0, triangle_count = 0;
+    bool normals = false, uvs = false;
+  };
+  std::vector<MeshRange> ranges_;
+  std::vector<MeshView> meshes_;
+  std::vector<vec3> positions_;
+  std::vector<vec3> normals_;
+  std::vector<vec2> uvs_;
+  std::vector<uvec3> triangles_;
+  std::vector<uint32_t> triangle_materials_;
+  std::vector<uint32_t> triangle_offsets_;
+  std::vector<MaterialRecord> materials_;
+  std::vector<vec3> texels_;
+  std::vector<TextureView> textures_;
+  std::vector<LightRecord> lights_;
+  std::vector<TriangleRef> area_triangles_;
+  std::vector<vec3> area_normals_;
+  std::vector<float> area_cdf_;
+  std::vector<AreaLightView> area_lights_;
+  Bounds bounds_;
+};
+
+}  // namespace bounce
