@@ -8,7 +8,7 @@ namespace bounce {
 namespace {
 
 // Directional albedo: the integral of f * cos over the hemisphere, by cosine-weighted QMC.
-vec3 directional_albedo(const SurfacePoint& s, vec3 wo, uint32_t n = 1 << 16) {
+vec3 directional_albedo(const SurfaceHit& s, vec3 wo, uint32_t n = 1 << 16) {
   vec3 sum(0.0f);
   for (uint32_t i = 0; i < n; ++i) {
     const vec3 wi = sample_cosine_hemisphere(sobol2(i));
@@ -36,14 +36,16 @@ float ggx_albedo(float roughness, vec3 wo, uint32_t n = 1 << 17) {
 
 TEST(Brdf, LambertWhiteFurnaceReflectsEverything) {
   // A white Lambertian surface under uniform unit radiance reflects radiance 1 in every direction.
-  const SurfacePoint white{vec3(0, 0, 1), vec3(1.0f), 1.0f, vec3(0.0f)};
+  const SurfaceHit white{
+      .normal = vec3(0, 0, 1), .albedo = vec3(1.0f), .f0 = vec3(0.0f), .roughness = 1.0f};
   for (float theta : {0.0f, 0.7f, 1.4f}) {
     const vec3 wo(std::sin(theta), 0.0f, std::cos(theta));
     const vec3 a = directional_albedo(white, wo);
     EXPECT_NEAR(a.x, 1.0f, 1e-3f);
     EXPECT_NEAR(a.z, 1.0f, 1e-3f);
   }
-  const SurfacePoint grey{vec3(0, 0, 1), vec3(0.5f), 1.0f, vec3(0.0f)};
+  const SurfaceHit grey{
+      .normal = vec3(0, 0, 1), .albedo = vec3(0.5f), .f0 = vec3(0.0f), .roughness = 1.0f};
   EXPECT_NEAR(directional_albedo(grey, vec3(0, 0, 1)).y, 0.5f, 1e-3f);
 }
 

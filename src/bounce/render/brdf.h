@@ -2,41 +2,35 @@
 // (GGX D, Schlick Fresnel, Schlick-GGX geometry with k = (roughness + 1)^2 / 8).
 #pragma once
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
+#include "bounce/render/surface_hit.h"
 
 namespace bounce {
-
-// What shading needs of a surface point.
-struct SurfacePoint {
-  vec3 normal;  // unit shading normal, facing the viewer
-  vec3 albedo;
-  float roughness;
-  vec3 f0;
-};
 
 // Below this, alpha = roughness^2 turns GGX into a near-delta that no light sample finds.
 inline constexpr float kMinRoughness = 0.03f;
 
 // GGX D from cos^2 and sin^2 of the half vector's angle. Taking sin^2 separately (not as
 // 1 - cos^2) keeps D accurate for smooth surfaces, where float cancellation would ruin it.
-inline float ggx_distribution(float cos2_h, float sin2_h, float alpha) {
+BOUNCE_HD inline float ggx_distribution(float cos2_h, float sin2_h, float alpha) {
   const float a2 = alpha * alpha;
   const float d = sin2_h + cos2_h * a2;
   return a2 / (kPi * d * d);
 }
 
-inline float schlick_ggx_g1(float n_dot_v, float k) {
+BOUNCE_HD inline float schlick_ggx_g1(float n_dot_v, float k) {
   return n_dot_v / (n_dot_v * (1.0f - k) + k);
 }
 
-inline vec3 fresnel_schlick(vec3 f0, float v_dot_h) {
+BOUNCE_HD inline vec3 fresnel_schlick(vec3 f0, float v_dot_h) {
   const float m = 1.0f - glm::clamp(v_dot_h, 0.0f, 1.0f);
   const float m2 = m * m;
   return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
 // GGX specular BRDF value (without the cosine) for unit wo (to the viewer) and wi (to the light).
-inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, vec3 f0) {
+BOUNCE_HD inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, vec3 f0) {
   const float n_dot_l = glm::dot(n, wi);
   const float n_dot_v = glm::dot(n, wo);
   if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
@@ -51,12 +45,12 @@ inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, vec3 f0) {
   return fresnel_schlick(f0, glm::dot(wo, h)) * (d * g / (4.0f * n_dot_l * n_dot_v));
 }
 
-inline vec3 lambert(vec3 albedo) {
+BOUNCE_HD inline vec3 lambert(vec3 albedo) {
   return albedo * kInvPi;
 }
 
 // Full BRDF: Lambert + GGX, as the seed sums them (no energy exchange between the lobes).
-inline vec3 eval_brdf(const SurfacePoint& s, vec3 wo, vec3 wi) {
+BOUNCE_HD inline vec3 eval_brdf(const SurfaceHit& s, vec3 wo, vec3 wi) {
   if (glm::dot(s.normal, wi) <= 0.0f) return vec3(0.0f);
   vec3 f = lambert(s.albedo);
   if (max_component(s.f0) > 0.0f) f += ggx_specular(s.normal, wo, wi, s.roughness, s.f0);

@@ -4,6 +4,7 @@
 // one strategy. Plain functions over plain data, for the path tracer and (later) CUDA kernels.
 #pragma once
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/core/sampling.h"
 #include "bounce/render/brdf.h"
@@ -12,7 +13,7 @@ namespace bounce {
 
 // Probability of sampling the specular lobe at s seen from wo: the lobes' reflectance estimates
 // (mean diffuse albedo; mean Schlick Fresnel at the view angle) relative to their sum.
-inline float specular_lobe_probability(const SurfacePoint& s, vec3 wo) {
+BOUNCE_HD inline float specular_lobe_probability(const SurfaceHit& s, vec3 wo) {
   if (max_component(s.f0) <= 0.0f) return 0.0f;
   const vec3 fresnel = fresnel_schlick(s.f0, glm::dot(s.normal, wo));
   const float specular = (fresnel.x + fresnel.y + fresnel.z) / 3.0f;
@@ -22,16 +23,16 @@ inline float specular_lobe_probability(const SurfacePoint& s, vec3 wo) {
 }
 
 // The GGX alpha that brdf.h evaluates with (roughness clamped to kMinRoughness, squared).
-inline float ggx_alpha(float roughness) {
+BOUNCE_HD inline float ggx_alpha(float roughness) {
   return sqr(glm::max(roughness, kMinRoughness));
 }
 
 // Solid-angle pdf of reflecting wo into wi by a half vector drawn from D(h) cos(theta_h).
-inline float ggx_reflection_pdf(vec3 n, vec3 wo, vec3 wi, float alpha) {
+BOUNCE_HD inline float ggx_reflection_pdf(vec3 n, vec3 wo, vec3 wi, float alpha) {
   const vec3 sum = wo + wi;
   const float len2 = glm::dot(sum, sum);
   if (len2 <= 0.0f) return 0.0f;
-  const vec3 h = sum / std::sqrt(len2);
+  const vec3 h = sum / glm::sqrt(len2);
   const float n_dot_h = glm::dot(n, h);
   const float wo_dot_h = glm::dot(wo, h);
   if (n_dot_h <= 0.0f || wo_dot_h <= 0.0f) return 0.0f;
@@ -41,7 +42,7 @@ inline float ggx_reflection_pdf(vec3 n, vec3 wo, vec3 wi, float alpha) {
 }
 
 // Solid-angle pdf with which sample_bsdf returns wi (the mixture over both lobes).
-inline float bsdf_pdf(const SurfacePoint& s, vec3 wo, vec3 wi) {
+BOUNCE_HD inline float bsdf_pdf(const SurfaceHit& s, vec3 wo, vec3 wi) {
   const float cos_i = glm::dot(s.normal, wi);
   if (cos_i <= 0.0f) return 0.0f;
   const float p_spec = specular_lobe_probability(s, wo);
@@ -55,11 +56,11 @@ struct BsdfSample {
   vec3 f{0.0f};      // BRDF value for (wo, wi)
   float pdf = 0.0f;  // mixture pdf of wi; 0 when no direction was produced
 
-  bool valid() const { return pdf > 0.0f && max_component(f) > 0.0f; }
+  BOUNCE_HD bool valid() const { return pdf > 0.0f && max_component(f) > 0.0f; }
 };
 
 // Draws wi from the mixture: u_lobe picks the lobe, u the direction within it.
-inline BsdfSample sample_bsdf(const SurfacePoint& s, vec3 wo, float u_lobe, vec2 u) {
+BOUNCE_HD inline BsdfSample sample_bsdf(const SurfaceHit& s, vec3 wo, float u_lobe, vec2 u) {
   BsdfSample b;
   const Basis basis = Basis::from_normal(s.normal);
   const float p_spec = specular_lobe_probability(s, wo);
@@ -73,7 +74,7 @@ inline BsdfSample sample_bsdf(const SurfacePoint& s, vec3 wo, float u_lobe, vec2
   }
   const float len2 = glm::dot(b.wi, b.wi);
   if (!(len2 > 0.0f)) return b;
-  b.wi /= std::sqrt(len2);
+  b.wi /= glm::sqrt(len2);
   if (glm::dot(s.normal, b.wi) <= 0.0f) return b;
   b.pdf = bsdf_pdf(s, wo, b.wi);
   b.f = eval_brdf(s, wo, b.wi);
@@ -81,7 +82,7 @@ inline BsdfSample sample_bsdf(const SurfacePoint& s, vec3 wo, float u_lobe, vec2
 }
 
 // Veach's power heuristic (beta = 2) for two strategies with pdfs a (this one) and b.
-inline float power_heuristic(float a, float b) {
+BOUNCE_HD inline float power_heuristic(float a, float b) {
   if (!(a > 0.0f)) return 0.0f;
   if (!(b > 0.0f)) return 1.0f;
   const float r = b / a;

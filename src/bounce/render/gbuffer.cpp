@@ -3,8 +3,8 @@
 #include <array>
 
 #include "bounce/core/parallel.h"
-#include "bounce/render/light_sampling.h"
-#include "bounce/render/surface.h"
+#include "bounce/render/gbuffer_kernel.h"
+#include "bounce/scene/scene_data.h"
 
 namespace bounce {
 
@@ -26,40 +26,10 @@ void GBuffer::resize(int w, int h) {
   motion.assign(n, vec2(0.0f));
 }
 
-static void write_gbuffer_pixel(const Scene& scene, const CameraRays& camera, const Ray& ray,
-                                const Hit& hit, size_t i, GBuffer& g) {
-  const SphereLightHit light = intersect_sphere_lights(scene, ray.origin, ray.direction, hit.t);
-  if (!hit.valid() || light.light >= 0) {
-    g.primitive[i] = g.mesh[i] = kNoPrimitive;
-    g.barycentric[i] = vec2(0.0f);
-    g.depth[i] = std::numeric_limits<float>::infinity();
-    g.position[i] = g.normal[i] = g.geometric_normal[i] = vec3(0.0f);
-    g.albedo[i] = g.f0[i] = g.emission[i] = vec3(0.0f);
-    g.roughness[i] = 1.0f;
-    // A sphere light in front shows its radiance; it has no surface to shade.
-    if (light.light >= 0) {
-      g.emission[i] = scene.lights[light.light].radiance;
-      g.depth[i] = light.t * glm::dot(ray.direction, camera.forward);
-    }
-    return;
-  }
-  const SurfaceHit s = surface_at(scene, hit, ray.direction);
-  g.primitive[i] = scene.triangle_offsets[hit.mesh] + hit.triangle;
-  g.mesh[i] = hit.mesh;
-  g.barycentric[i] = hit.barycentric;
-  g.position[i] = s.position;
-  g.normal[i] = s.normal;
-  g.geometric_normal[i] = s.geometric_normal;
-  g.albedo[i] = s.albedo;
-  g.roughness[i] = s.roughness;
-  g.f0[i] = s.f0;
-  g.emission[i] = s.emission;
-  g.depth[i] = hit.t * glm::dot(ray.direction, camera.forward);
-}
-
-uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,
+uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g) {
   constexpr int kTile = 8;
+  const GBufferView view = g.view();
   // Rays go to the tracer in rows of 8 pixels: the packets it traces are as coherent as possible.
   parallel_for_tiles(g.width, g.height, kTile, [&](int x0, int y0, int x1, int y1) {
     std::array<Ray, kTile * kTile> rays;
@@ -76,9 +46,15 @@ uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRay
     n = 0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x, ++n)
-        write_gbuffer_pixel(scene, camera, rays[n], hits[n], size_t(y) * g.width + x, g);
+        gbuffer_pixel(scene, camera.forward, rays[n], hits[n], view.index(x, y), view);
   });
   return uint64_t(g.width) * g.height;
+}
+
+uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,
+                       vec2 subpixel, GBuffer& g) {
+  const SceneData data = SceneData::from(scene);
+  return build_gbuffer(data.view(), tracer, camera, subpixel, g);
 }
 
 }  // namespace bounce

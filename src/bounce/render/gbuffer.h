@@ -35,6 +35,7 @@ struct GBuffer {
   void resize(int w, int h);
   size_t size() const { return size_t(width) * height; }
   bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
+  SurfaceHit surface(size_t i) const { return view().surface(i); }
 
   GBufferView view() {
     return {position.data(),
@@ -46,6 +47,9 @@ struct GBuffer {
             emission.data(),
             depth.data(),
             primitive.data(),
+            mesh.data(),
+            barycentric.data(),
+            motion.data(),
             width,
             height};
   }
@@ -59,6 +63,9 @@ struct GBuffer {
             emission.data(),
             depth.data(),
             primitive.data(),
+            mesh.data(),
+            barycentric.data(),
+            motion.data(),
             width,
             height};
   }
@@ -68,12 +75,17 @@ struct GBuffer {
 
 #include "bounce/scene/camera.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_view.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
 
 // Fills the G-buffer (already sized) with one primary ray per pixel through sub-pixel position
 // `subpixel` in [0, 1)^2 ((0.5, 0.5) is the centre). Returns the number of rays traced.
+uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
+                       vec2 subpixel, GBuffer& g);
+// The same from the Scene itself, for callers without a SceneData (tests, benchmarks): copies
+// the scene into one first.
 uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g);
 

@@ -7,6 +7,7 @@
 
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
+#include "bounce/render/surface_hit.h"
 
 namespace bounce {
 
@@ -27,12 +28,38 @@ struct GBufferViewT {
   Ptr<vec3> emission = nullptr;
   Ptr<float> depth = nullptr;
   Ptr<uint32_t> primitive = nullptr;
+  Ptr<uint32_t> mesh = nullptr;
+  Ptr<vec2> barycentric = nullptr;
+  Ptr<vec2> motion = nullptr;
   int width = 0;
   int height = 0;
 
   BOUNCE_HD size_t size() const { return size_t(width) * size_t(height); }
   BOUNCE_HD size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
   BOUNCE_HD bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
+
+  // The surface record at pixel i (meaningful where hit(i)).
+  BOUNCE_HD SurfaceHit surface(size_t i) const {
+    SurfaceHit s;
+    s.position = position[i];
+    s.normal = normal[i];
+    s.geometric_normal = geometric_normal[i];
+    s.albedo = albedo[i];
+    s.f0 = f0[i];
+    s.emission = emission[i];
+    s.roughness = roughness[i];
+    return s;
+  }
+  // Writes a surface record's fields at pixel i (the ids, depth and motion are set apart).
+  BOUNCE_HD void store(size_t i, const SurfaceHit& s) const {
+    position[i] = s.position;
+    normal[i] = s.normal;
+    geometric_normal[i] = s.geometric_normal;
+    albedo[i] = s.albedo;
+    f0[i] = s.f0;
+    emission[i] = s.emission;
+    roughness[i] = s.roughness;
+  }
 };
 using GBufferView = GBufferViewT<false>;
 using ConstGBufferView = GBufferViewT<true>;

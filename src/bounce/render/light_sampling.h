@@ -13,7 +13,7 @@
 #include "bounce/render/sphere_cone.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_view.h"
-#include "bounce/trace/ray_sphere.h"
+#include "bounce/trace/ray.h"
 
 namespace bounce {
 
@@ -25,11 +25,18 @@ struct LightSample {
   vec3 weight{0.0f};  // radiance / pdf (solid angle), or I / d^2, or E for a directional light
   float pdf = 0.0f;   // solid-angle pdf of wi; 0 for point, spot and directional lights
 
-  bool valid() const { return max_component(weight) > 0.0f; }
+  BOUNCE_HD bool valid() const { return max_component(weight) > 0.0f; }
 };
 
+// The shadow ray that tests a light sample from `origin` (a surface point already offset off its
+// surface): it stops just short of the sampled point, so the light's own surface (an emissive
+// triangle, a sphere light) does not block it. Direct light and the path tracer both use it.
+BOUNCE_HD inline Ray shadow_ray(vec3 origin, const LightSample& ls) {
+  return Ray{origin, 0.0f, ls.wi, ls.distance * (1.0f - 1e-4f)};
+}
+
 // Point, spot and directional lights: one deterministic sample.
-inline LightSample sample_punctual_light(const Light& light, vec3 p) {
+BOUNCE_HD inline LightSample sample_punctual_light(const LightRecord& light, vec3 p) {
   LightSample s;
   if (light.type == LightType::kDirectional) {
     s.wi = -light.direction;
@@ -40,7 +47,7 @@ inline LightSample sample_punctual_light(const Light& light, vec3 p) {
   const vec3 to_light = light.position - p;
   const float d2 = glm::dot(to_light, to_light);
   if (d2 <= 0.0f) return s;
-  s.distance = std::sqrt(d2);
+  s.distance = glm::sqrt(d2);
   s.wi = to_light / s.distance;
   s.weight = light.intensity / d2;
   if (light.type == LightType::kSpot) s.weight *= spot_falloff(light, -s.wi);
@@ -48,18 +55,18 @@ inline LightSample sample_punctual_light(const Light& light, vec3 p) {
 }
 
 // Sphere light: a direction uniform in the cone the sphere subtends (exact solid-angle pdf).
-inline LightSample sample_sphere_light(const Light& light, vec3 p, vec2 u) {
+BOUNCE_HD inline LightSample sample_sphere_light(const LightRecord& light, vec3 p, vec2 u) {
   LightSample s;
   const vec3 to_centre = light.position - p;
   const float d2 = glm::dot(to_centre, to_centre);
   const float r2 = light.radius * light.radius;
   const SphereCone cone = sphere_cone(d2, r2);
   if (!cone.outside) return s;  // inside the light: it is not a surface we shade against
-  const float d = std::sqrt(d2);
+  const float d = glm::sqrt(d2);
   const vec3 local = sample_uniform_cone(u, cone.cos_max);
   s.wi = Basis::from_normal(to_centre / d).to_world(local);
   const float b = glm::dot(s.wi, to_centre);
-  s.distance = b - std::sqrt(glm::max(0.0f, b * b - (d2 - r2)));
+  s.distance = b - glm::sqrt(glm::max(0.0f, b * b - (d2 - r2)));
   s.pdf = 1.0f / cone.solid_angle();
   s.weight = light.radiance / s.pdf;
   return s;
@@ -111,45 +118,34 @@ inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLigh
           light.normals[pick.index]};
 }
 
-// Area light made of emissive triangles, sampled by area. One-sided emission.
-inline LightSample sample_area_light(const Scene& scene, const AreaLight& light, vec3 p, vec2 u) {
+// Area light made of emissive triangles, sampled by area: the sample towards point q of a light
+// of `radiance` and total `area`. One-sided emission.
+BOUNCE_HD inline LightSample area_light_sample(const AreaLightPoint& q, vec3 radiance, float area,
+                                               vec3 p) {
   LightSample s;
-  const AreaLightPoint q = sample_area_light_point(scene, light, u);
   const vec3 to_light = q.position - p;
   const float d2 = glm::dot(to_light, to_light);
   if (d2 <= 0.0f) return s;
-  s.distance = std::sqrt(d2);
+  s.distance = glm::sqrt(d2);
   s.wi = to_light / s.distance;
   const float cos_light = -glm::dot(q.normal, s.wi);
   if (cos_light <= 0.0f) return s;  // behind the emitting face
-  s.pdf = d2 / (cos_light * light.area);
-  s.weight = light.radiance / s.pdf;
+  s.pdf = d2 / (cos_light * area);
+  s.weight = radiance / s.pdf;
   return s;
 }
-
-// Distance along a unit-direction ray to the nearest sphere light's surface in (0, tmax], with
-// the light's index; index -1 when none is hit. tmax itself counts, so that a sphere light the
-// Tracer reported at hit.t is found again (both use ray_sphere_distance, bit for bit).
-struct SphereLightHit {
-  int light = -1;
-  float t = 0.0f;
-};
-inline SphereLightHit intersect_sphere_lights(const Scene& scene, vec3 origin, vec3 direction,
-                                              float tmax) {
-  SphereLightHit best;
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
-    if (l.type != LightType::kSphere) continue;
-    const float t = ray_sphere_distance(l.position, l.radius, origin, direction, 0.0f);
-    if (!(t < std::numeric_limits<float>::infinity())) continue;
-    if (best.light < 0 ? t <= tmax : t < best.t) best = {int(i), t};
-  }
-  return best;
+BOUNCE_HD inline LightSample sample_area_light(const SceneView& scene, const AreaLightView& light,
+                                               vec3 p, vec2 u) {
+  return area_light_sample(sample_area_light_point(scene, light, u), light.radiance, light.area, p);
+}
+inline LightSample sample_area_light(const Scene& scene, const AreaLight& light, vec3 p, vec2 u) {
+  return area_light_sample(sample_area_light_point(scene, light, u), light.radiance, light.area, p);
 }
 
 // Unshadowed GGX specular from a sphere light by Karis' representative point with the widened
 // lobe's energy normalisation (seed 000 §5.2.1, Listings 5.1-5.2). Returns outgoing radiance.
-inline vec3 sphere_light_specular(const Light& light, const SurfacePoint& s, vec3 p, vec3 wo) {
+BOUNCE_HD inline vec3 sphere_light_specular(const LightRecord& light, const SurfaceHit& s, vec3 p,
+                                            vec3 wo) {
   if (max_component(s.f0) <= 0.0f) return vec3(0.0f);
   const vec3 l = light.position - p;
   const float distance = glm::length(l);

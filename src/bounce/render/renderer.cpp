@@ -83,6 +83,10 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "scene");
     // Sphere lights are trace geometry: a light change updates the tracer too.
     if (!change.moved_meshes.empty() || change.lights) tracer_.update(scene_, change.moved_meshes);
+    if (change.everything)
+      scene_data_.build(scene_);
+    else if (change.geometry() || change.lights || change.materials)
+      scene_data_.refresh(scene_, change.moved_meshes);
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;
@@ -101,13 +105,14 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   {
     ScopedStage stage(f.times, "gbuffer");
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
-    f.primary_rays = build_gbuffer(scene_, tracer_, rays, subpixel, f.gbuffer);
+    f.primary_rays = build_gbuffer(scene_data_.view(), tracer_, rays, subpixel, f.gbuffer);
   }
   {
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
-    f.shadow_rays = compute_direct(scene_, tracer_, f.gbuffer, rays.origin, direct, f.direct);
+    f.shadow_rays =
+        compute_direct(scene_data_.view(), tracer_, f.gbuffer, rays.origin, direct, f.direct);
     direct_average_.add(f.direct, rest);
   }
   f.frames_averaged = direct_average_.frames;

@@ -15,6 +15,7 @@
 #include "bounce/render/technique.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
+#include "bounce/scene/scene_data.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -82,6 +83,7 @@ class Renderer {
 
   const Scene& scene_;
   Tracer& tracer_;
+  SceneData scene_data_;  // the scene as the G-buffer and direct-light kernels read it
   std::unique_ptr<Technique> technique_;
   Frame frame_;
   uint32_t frame_index_ = 0;

@@ -3,22 +3,12 @@
 
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
+#include "bounce/render/surface_hit.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_view.h"
 #include "bounce/trace/ray.h"
 
 namespace bounce {
-
-struct SurfaceHit {
-  vec3 position;
-  vec3 normal;            // shading normal, on the side the ray came from
-  vec3 geometric_normal;  // face normal, on the side the ray came from
-  vec3 albedo;
-  vec3 f0;
-  vec3 emission;  // radiance emitted back along the ray (0 when the ray hit the back face)
-  float roughness;
-  uint32_t material;
-};
 
 // The surface at a triangle hit on `mesh`, whose material there is `material`, for a ray
 // travelling along `direction`; albedo(material, uv) gives the (textured) diffuse albedo. The one
@@ -30,7 +20,6 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   const float b1 = hit.barycentric.x, b2 = hit.barycentric.y, b0 = 1.0f - b1 - b2;
 
   SurfaceHit s;
-  s.material = mesh.materials[hit.triangle];
   s.position = b0 * mesh.positions[tri.x] + b1 * mesh.positions[tri.y] + b2 * mesh.positions[tri.z];
   const vec3 face = glm::normalize(mesh.face_normal_area2(hit.triangle));
   const bool front = glm::dot(face, direction) < 0.0f;

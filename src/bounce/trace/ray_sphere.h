@@ -1,5 +1,5 @@
-// Ray against sphere: the one intersection test for sphere lights, used by the trace view, the
-// Tracer's calls and light_sampling.h's intersect_sphere_lights.
+// Ray against sphere: the one intersection test for sphere lights, used by the trace view and the
+// Tracer's calls.
 #pragma once
 
 #include <cmath>

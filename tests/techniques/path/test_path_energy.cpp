@@ -7,6 +7,7 @@
 
 #include "bounce/core/sampling.h"
 #include "bounce/scene/load.h"
+#include "bounce/scene/scene_data.h"
 #include "bounce/techniques/path/path_tracer.h"
 #include "path_test_util.h"
 
@@ -21,7 +22,8 @@ TEST(PathEnergy, CornellAbsorbedPlusEscapedEqualsEmitted) {
   for (const Material& m : s.materials) ASSERT_EQ(max_component(m.f0), 0.0f) << m.name;
   auto tracer = make_embree_tracer(s);
   const LightPicker lights = LightPicker::build(s);
-  const PathScene ps{s, *tracer, lights};
+  const SceneData data = SceneData::from(s);
+  const PathScene ps = path_scene(data.view(), *tracer, lights);
   PathSettings settings;  // all bounces, roulette from vertex 3
   PathCounters counters;
 
@@ -61,7 +63,12 @@ TEST(PathEnergy, CornellAbsorbedPlusEscapedEqualsEmitted) {
       absorbed.add(vec3(0.0f));
       continue;
     }
-    const PathVertex probe{q, normal, {normal, vec3(1.0f), 1.0f, vec3(0.0f)}};
+    const SurfaceHit probe{.position = q,
+                           .normal = normal,
+                           .geometric_normal = normal,
+                           .albedo = vec3(1.0f),
+                           .f0 = vec3(0.0f),
+                           .roughness = 1.0f};
     const vec3 irradiance = kPi * reflected_radiance(ps, settings, probe, normal, rng, counters);
     absorbed.add((vec3(1.0f) - albedo) * irradiance * (2.0f * area));
   }
@@ -82,7 +89,12 @@ TEST(PathEnergy, CornellAbsorbedPlusEscapedEqualsEmitted) {
     const vec3 a = opening[0], b = opening[first ? 1 : 2], c = opening[first ? 2 : 3];
     const vec2 w = sample_uniform_triangle(rng.next2());
     const vec3 q = (1.0f - w.x - w.y) * a + w.x * b + w.y * c;
-    const PathVertex probe{q, inward, {inward, vec3(1.0f), 1.0f, vec3(0.0f)}};
+    const SurfaceHit probe{.position = q,
+                           .normal = inward,
+                           .geometric_normal = inward,
+                           .albedo = vec3(1.0f),
+                           .f0 = vec3(0.0f),
+                           .roughness = 1.0f};
     escaped.add(reflected_radiance(ps, settings, probe, inward, rng, counters) *
                 (kPi * (area0 + area1)));
   }

@@ -8,6 +8,7 @@
 #include "bounce/render/light_pdf.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/light_sampling.h"
+#include "bounce/scene/scene_data.h"
 #include "bounce/techniques/path/path_tracer.h"
 #include "path_test_util.h"
 #include "scene/hand_built_scenes.h"
@@ -38,7 +39,7 @@ vec3 direction_at(float cos_theta) {
 // d omega_i = 4 (wo . h) d omega_h) on a midpoint grid in (u, phi), where
 // cos^2 theta_h = (1 - u) / (1 + (alpha^2 - 1) u) spreads the grid like D(h) cos(theta_h) so
 // that even a narrow lobe gets resolved; the grid's measure is D(h) cos(theta_h) d omega_h.
-vec3 albedo_by_quadrature(const SurfacePoint& s, vec3 wo, int n = 1024) {
+vec3 albedo_by_quadrature(const SurfaceHit& s, vec3 wo, int n = 1024) {
   double sum[3] = {s.albedo.x, s.albedo.y, s.albedo.z};
   if (max_component(s.f0) <= 0.0f) return s.albedo;
   const double r = std::max(double(s.roughness), double(kMinRoughness));
@@ -67,7 +68,8 @@ vec3 albedo_by_quadrature(const SurfacePoint& s, vec3 wo, int n = 1024) {
 TEST(PathSampling, ImportanceSampledAlbedoMatchesQuadrature) {
   for (const TestMaterial& m : kMaterials)
     for (float cos_o : {0.95f, 0.6f, 0.25f}) {
-      const SurfacePoint s{vec3(0, 0, 1), m.albedo, m.roughness, m.f0};
+      const SurfaceHit s{
+          .normal = vec3(0, 0, 1), .albedo = m.albedo, .f0 = m.f0, .roughness = m.roughness};
       const vec3 wo = direction_at(cos_o);
       Estimate e;
       Pcg32 rng(7);
@@ -86,7 +88,8 @@ TEST(PathSampling, PdfIntegratesToTheProbabilityOfAValidSample) {
   for (const TestMaterial& m : kMaterials)
     for (float cos_o : {0.9f, 0.4f}) {
       if (m.roughness < 0.1f) continue;  // too narrow a lobe for uniform integration
-      const SurfacePoint s{vec3(0, 0, 1), m.albedo, m.roughness, m.f0};
+      const SurfaceHit s{
+          .normal = vec3(0, 0, 1), .albedo = m.albedo, .f0 = m.f0, .roughness = m.roughness};
       const vec3 wo = direction_at(cos_o);
       // Integral of the pdf over the hemisphere by uniform QMC directions.
       const uint32_t n = 1 << 20;
@@ -161,11 +164,12 @@ TEST(PathSampling, LightPickerFollowsPower) {
 }
 
 // Reflected radiance at a surface point with no geometry of its own, direct light only.
-Estimate estimate_direct(const Scene& scene, const PathVertex& x, vec3 wo, LightStrategy strategy,
+Estimate estimate_direct(const Scene& scene, const SurfaceHit& x, vec3 wo, LightStrategy strategy,
                          int n) {
   auto tracer = make_embree_tracer(scene);
   const LightPicker lights = LightPicker::build(scene);
-  const PathScene ps{scene, *tracer, lights};
+  const SceneData data = SceneData::from(scene);
+  const PathScene ps = path_scene(data.view(), *tracer, lights);
   PathSettings settings;
   settings.max_bounces = 0;
   settings.strategy = strategy;
@@ -183,10 +187,14 @@ TEST(PathSampling, UniformFieldGivesRadianceTimesDirectionalAlbedo) {
   const vec3 le(2.0f);
   const Scene s = path_test::furnace(vec3(0.0f), le);
   for (const TestMaterial& m : kMaterials) {
-    const PathVertex x{
-        vec3(0.1f, 0.0f, -0.2f), vec3(0, 0, 1), {vec3(0, 0, 1), m.albedo, m.roughness, m.f0}};
+    const SurfaceHit x{.position = vec3(0.1f, 0.0f, -0.2f),
+                       .normal = vec3(0, 0, 1),
+                       .geometric_normal = vec3(0, 0, 1),
+                       .albedo = m.albedo,
+                       .f0 = m.f0,
+                       .roughness = m.roughness};
     const vec3 wo = direction_at(0.7f);
-    const vec3 expected = le * albedo_by_quadrature(x.surface, wo);
+    const vec3 expected = le * albedo_by_quadrature(x, wo);
     for (LightStrategy strategy :
          {LightStrategy::kMis, LightStrategy::kLightOnly, LightStrategy::kBsdfOnly}) {
       // Light sampling alone cannot find a near-mirror's lobe in reasonable time.
@@ -207,7 +215,12 @@ TEST(PathSampling, SphereLightIrradianceIsAnalytic) {
   const float radius = 0.3f, d = 1.0f, le = 5.0f;
   s.lights.push_back(Light::sphere(vec3(0.0f, 0.0f, d), radius, vec3(le)));
   s.finalize();
-  const PathVertex x{vec3(0.0f), vec3(0, 0, 1), {vec3(0, 0, 1), vec3(1.0f), 1.0f, vec3(0.0f)}};
+  const SurfaceHit x{.position = vec3(0.0f),
+                     .normal = vec3(0, 0, 1),
+                     .geometric_normal = vec3(0, 0, 1),
+                     .albedo = vec3(1.0f),
+                     .f0 = vec3(0.0f),
+                     .roughness = 1.0f};
   const float expected = le * radius * radius / (d * d);
   for (LightStrategy strategy :
        {LightStrategy::kMis, LightStrategy::kLightOnly, LightStrategy::kBsdfOnly}) {
@@ -227,7 +240,12 @@ TEST(PathSampling, PunctualLightsGiveTheirIrradiance) {
   const vec3 sun = glm::normalize(vec3(0.0f, 1.0f, -1.0f));
   s.lights.push_back(Light::directional(sun, vec3(3.0f)));  // E = 3 cos 45
   s.finalize();
-  const PathVertex x{vec3(0.0f), vec3(0, 0, 1), {vec3(0, 0, 1), vec3(1.0f), 1.0f, vec3(0.0f)}};
+  const SurfaceHit x{.position = vec3(0.0f),
+                     .normal = vec3(0, 0, 1),
+                     .geometric_normal = vec3(0, 0, 1),
+                     .albedo = vec3(1.0f),
+                     .f0 = vec3(0.0f),
+                     .roughness = 1.0f};
   const float c = std::sqrt(0.5f);
   const float expected = (1.0f + c + 3.0f * c) / kPi;
   const Estimate e = estimate_direct(s, x, vec3(0, 0, 1), LightStrategy::kMis, 200000);
@@ -256,8 +274,12 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
   s.finalize();
   ASSERT_EQ(s.area_lights.size(), 1u);
   ASSERT_GT(s.meshes[0].face_normal_area2(2).y * -1.0f, 0.0f) << "the lamp must face down";
-  const PathVertex x{
-      vec3(0.0f), vec3(0, 1, 0), {vec3(0, 1, 0), floor.albedo, floor.roughness, floor.f0}};
+  const SurfaceHit x{.position = vec3(0.0f),
+                     .normal = vec3(0, 1, 0),
+                     .geometric_normal = vec3(0, 1, 0),
+                     .albedo = floor.albedo,
+                     .f0 = floor.f0,
+                     .roughness = floor.roughness};
   for (vec3 wo : {glm::normalize(vec3(-1.0f, 0.8f, 0.0f)), glm::normalize(vec3(1.0f, 1.2f, 0.0f)),
                   vec3(0, 1, 0)}) {
     const Estimate mis = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);

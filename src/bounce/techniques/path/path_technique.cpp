@@ -1,7 +1,6 @@
 #include "bounce/techniques/path/path_technique.h"
 
-#include <algorithm>
-#include <atomic>
+#include <tbb/enumerable_thread_specific.h>
 
 #include "bounce/core/parallel.h"
 
@@ -18,6 +17,10 @@ PathTracing::PathTracing() {
 
 void PathTracing::prepare(const PrepareContext& context) {
   const SceneChange& c = context.change;
+  if (c.everything)
+    scene_data_.build(context.scene);
+  else if (c.geometry() || c.lights || c.materials)
+    scene_data_.refresh(context.scene, c.moved_meshes);
   if (c.geometry() || c.lights || c.materials) lights_ = LightPicker::build(context.scene);
 }
 
@@ -29,7 +32,7 @@ void PathTracing::indirect(const FrameContext& context, Image& out) {
   }
   const bool accumulate = context.accumulate;
 
-  const PathScene ps{context.scene, context.tracer, lights_};
+  const PathScene ps = path_scene(scene_data_.view(), context.tracer, lights_);
   PathSettings settings;
   settings.min_bounces = 1;
   settings.max_bounces = max_bounces_;
@@ -39,30 +42,19 @@ void PathTracing::indirect(const FrameContext& context, Image& out) {
       uint32_t(accumulate ? frames_ : int(context.frame_index)) * uint32_t(samples_);
   const vec3 eye = context.camera.origin;
   const float inv = 1.0f / float((frames_ + 1) * samples_);
-  std::atomic<uint64_t> rays{0};
-  parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
-    PathCounters counters;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const size_t i = size_t(y) * g.width + x;
-        if (g.hit(i)) {
-          const PathVertex v{g.position[i],
-                             g.geometric_normal[i],
-                             {g.normal[i], g.albedo[i], g.roughness[i], g.f0[i]}};
-          const vec3 wo = glm::normalize(eye - g.position[i]);
-          vec3 sum(0.0f);
-          for (int k = 0; k < samples_; ++k) {
-            Pcg32 rng = path_rng(uint32_t(i), first + uint32_t(k), uint32_t(seed_));
-            sum += reflected_radiance(ps, settings, v, wo, rng, counters);
-          }
-          sums_[i] += sum;
-        }
-        out.pixels()[i] = sums_[i] * inv;
-      }
-    rays += counters.rays;
+  const ConstGBufferView view = g.view();
+  const int samples = samples_;
+  const uint32_t seed = uint32_t(seed_);
+  vec3* sums = sums_.data();
+  vec3* pixels = out.pixels().data();
+  tbb::enumerable_thread_specific<PathCounters> counters;
+  parallel_for_2d(g.width, g.height, [&](int x, int y) {
+    const uint32_t i = uint32_t(view.index(x, y));
+    sums[i] += path_pixel(ps, settings, view, i, eye, first, samples, seed, counters.local());
+    pixels[i] = sums[i] * inv;
   });
+  for (const PathCounters& c : counters) context.counters.rays += c.rays;
   ++frames_;
-  context.counters.rays += rays;
 }
 
 }  // namespace bounce

@@ -1,16 +1,25 @@
 // The path-tracing kernel: radiance along one path, unbiased, with next-event estimation and
-// multiple importance sampling. Plain functions over plain data (no allocation, exceptions or
-// virtual calls besides the Tracer's ray queries), shared by the `path` technique and the offline
-// reference renderer. README.md in this folder explains the estimator and its choices.
+// multiple importance sampling. Host/device functions over plain views (the scene view, the trace
+// view, the light picker's view), shared by the `path` technique and the offline reference
+// renderer. README.md in this folder explains the estimator and its choices.
 #pragma once
 
 #include <cstdint>
 
+#include <limits>
+
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/brdf.h"
-#include "bounce/scene/scene.h"
+#include "bounce/render/bsdf_sampling.h"
+#include "bounce/render/gbuffer_view.h"
+#include "bounce/render/light_pdf.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/light_sampling.h"
+#include "bounce/render/surface.h"
+#include "bounce/scene/scene_view.h"
+#include "bounce/trace/trace_view.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -36,36 +45,191 @@ struct PathSettings {
   LightStrategy strategy = LightStrategy::kMis;
 };
 
+// What a path reads: the scene, its ray queries (sphere lights included) and the light pick.
 struct PathScene {
-  const Scene& scene;
-  const Tracer& tracer;
-  const LightPicker& lights;
+  SceneView scene;
+  TraceView trace;
+  LightPickerView lights;
+  // Area light of each triangle by global id (LightPicker::area_light_of_triangle), -1 for
+  // non-emitters.
+  const int32_t* area_light_of_triangle = nullptr;
+
+  BOUNCE_HD float pick_pmf(uint32_t entry) const {
+    return lights.empty() ? 0.0f : lights.pmf[entry];
+  }
 };
 
-// A surface point a path leaves from.
-struct PathVertex {
-  vec3 position;
-  vec3 geometric_normal;  // on the side the path arrived from
-  SurfacePoint surface;   // shading normal (same side) and material
-};
+// The views of a scene's data, its tracer and its light picker, valid while they are.
+inline PathScene path_scene(const SceneView& scene, const Tracer& tracer,
+                            const LightPicker& lights) {
+  return {scene, tracer.view(), lights.view(), lights.area_light_of_triangle.data()};
+}
 
 struct PathCounters {
   uint64_t rays = 0;       // intersection and shadow rays
   uint64_t nonfinite = 0;  // samples dropped because they were NaN or infinite
 };
 
+BOUNCE_HD inline uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
 // The generator of one path: a function of the pixel, the sample index and the seed only, so
 // images do not depend on how the work is split over threads.
-Pcg32 path_rng(uint32_t pixel, uint32_t sample, uint32_t seed);
+BOUNCE_HD inline Pcg32 path_rng(uint32_t pixel, uint32_t sample, uint32_t seed) {
+  return Pcg32(splitmix64((uint64_t(pixel) << 32) | sample), seed);
+}
+
+// Next-event estimation at x: one light picked by power, one sample of it, one shadow ray from
+// p (x's offset origin). Returns the radiance x reflects towards wo from that sample.
+BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& settings,
+                                       const SurfaceHit& x, vec3 p, vec3 wo, Pcg32& rng,
+                                       PathCounters& counters) {
+  // Draw the numbers first, so that the path's later decisions use the same ones whatever
+  // happens here.
+  const float u_pick = rng.next_float();
+  const vec2 u = rng.next2();
+  if (ps.lights.empty()) return vec3(0.0f);
+  const uint32_t entry = ps.lights.pick(u_pick);
+  const float pick_pdf = ps.lights.pmf[entry];
+  if (!(pick_pdf > 0.0f)) return vec3(0.0f);
+
+  LightSample ls;
+  bool delta = false;
+  if (entry < ps.lights.light_count) {
+    const LightRecord& light = ps.scene.lights[entry];
+    if (light.type == LightType::kSphere) {
+      ls = sample_sphere_light(light, p, u);
+    } else {
+      ls = sample_punctual_light(light, p);
+      delta = true;
+    }
+  } else {
+    ls = sample_area_light(ps.scene, ps.scene.area_lights[entry - ps.lights.light_count], p, u);
+  }
+  if (!ls.valid()) return vec3(0.0f);
+  // BSDF sampling cannot find a point light; it finds area and sphere lights on its own.
+  if (!delta && settings.strategy == LightStrategy::kBsdfOnly) return vec3(0.0f);
+  const float cos_i = glm::dot(x.normal, ls.wi);
+  // Light from below the face itself cannot arrive, whatever the shading normal says.
+  if (cos_i <= 0.0f || glm::dot(x.geometric_normal, ls.wi) <= 0.0f) return vec3(0.0f);
+  const vec3 f = eval_brdf(x, wo, ls.wi);
+  if (max_component(f) <= 0.0f) return vec3(0.0f);
+  float weight = 1.0f;
+  if (!delta && settings.strategy == LightStrategy::kMis)
+    weight = power_heuristic(pick_pdf * ls.pdf, bsdf_pdf(x, wo, ls.wi));
+  if (weight <= 0.0f) return vec3(0.0f);
+  ++counters.rays;
+  // Sphere lights are trace geometry: the one occlusion query sees them too.
+  if (ps.trace.occluded(shadow_ray(p, ls))) return vec3(0.0f);
+  return f * ls.weight * (cos_i * weight / pick_pdf);
+}
+
+// MIS weight of emission found by a BSDF-sampled direction whose pdf was bsdf_pdf, when the
+// light strategy would have found it with pdf light_pdf.
+BOUNCE_HD inline float emission_weight(const PathSettings& settings, float bsdf_pdf,
+                                       float light_pdf) {
+  switch (settings.strategy) {
+    case LightStrategy::kMis:
+      return power_heuristic(bsdf_pdf, light_pdf);
+    case LightStrategy::kLightOnly:
+      return light_pdf > 0.0f ? 0.0f : 1.0f;  // what light sampling cannot find stays here
+    case LightStrategy::kBsdfOnly:
+      return 1.0f;
+  }
+  return 1.0f;
+}
 
 // Radiance that `start` reflects towards wo (its own emission excluded), from light with
 // settings.min_bounces..max_bounces bounces.
-vec3 reflected_radiance(const PathScene& ps, const PathSettings& settings, const PathVertex& start,
-                        vec3 wo, Pcg32& rng, PathCounters& counters);
+BOUNCE_HD inline vec3 reflected_radiance(const PathScene& ps, const PathSettings& settings,
+                                         const SurfaceHit& start, vec3 wo, Pcg32& rng,
+                                         PathCounters& counters) {
+  const int last =
+      settings.max_bounces < 0 ? kMaxPathBounces : glm::min(settings.max_bounces, kMaxPathBounces);
+  vec3 radiance(0.0f), throughput(1.0f);
+  SurfaceHit x = start;
+  // At vertex `bounce`, light sampled there or found by its BSDF ray has `bounce` bounces.
+  for (int bounce = 0; bounce <= last; ++bounce) {
+    const bool counts = bounce >= settings.min_bounces;
+    const vec3 p = offset_origin(x.position, x.geometric_normal);
+    if (counts) radiance += throughput * sample_one_light(ps, settings, x, p, wo, rng, counters);
+
+    const float u_lobe = rng.next_float();
+    const vec2 u = rng.next2();
+    const BsdfSample b = sample_bsdf(x, wo, u_lobe, u);
+    if (!b.valid() || glm::dot(x.geometric_normal, b.wi) <= 0.0f) break;
+    throughput *= b.f * (glm::dot(x.normal, b.wi) / b.pdf);
+    if (bounce >= settings.rr_start) {
+      const float survive = glm::min(1.0f, max_component(throughput));
+      if (!(rng.next_float() < survive)) break;
+      throughput /= survive;
+    }
+
+    const Hit hit = ps.trace.intersect(Ray{p, 0.0f, b.wi, std::numeric_limits<float>::infinity()});
+    ++counters.rays;
+    if (hit.sphere_light()) {
+      // Sphere lights emit and reflect nothing: the path ends on them.
+      if (counts) {
+        const LightRecord& light = ps.scene.lights[hit.light];
+        const float light_pdf = ps.pick_pmf(hit.light) * sphere_light_pdf(light, p);
+        radiance += throughput * light.radiance * emission_weight(settings, b.pdf, light_pdf);
+      }
+      break;
+    }
+    if (!hit.valid()) break;
+    const SurfaceHit s = surface_at(ps.scene, hit, b.wi);
+    if (counts && max_component(s.emission) > 0.0f) {
+      const int32_t area = ps.area_light_of_triangle[ps.scene.triangle_id(hit.mesh, hit.triangle)];
+      float light_pdf = 0.0f;
+      if (area >= 0)
+        light_pdf =
+            ps.pick_pmf(ps.lights.light_count + uint32_t(area)) *
+            area_light_pdf(ps.scene.area_lights[area], hit.t, glm::dot(s.geometric_normal, -b.wi));
+      radiance += throughput * s.emission * emission_weight(settings, b.pdf, light_pdf);
+    }
+    x = s;
+    wo = -b.wi;
+  }
+  if (!is_finite(radiance)) {
+    ++counters.nonfinite;
+    return vec3(0.0f);
+  }
+  return radiance;
+}
 
 // Radiance arriving at `origin` from unit direction -direction: what a camera ray sees, emitters
 // included (their emission at weight one: no light sample is taken at a camera).
-vec3 ray_radiance(const PathScene& ps, const PathSettings& settings, vec3 origin, vec3 direction,
-                  Pcg32& rng, PathCounters& counters);
+BOUNCE_HD inline vec3 ray_radiance(const PathScene& ps, const PathSettings& settings, vec3 origin,
+                                   vec3 direction, Pcg32& rng, PathCounters& counters) {
+  const Hit hit =
+      ps.trace.intersect(Ray{origin, 0.0f, direction, std::numeric_limits<float>::infinity()});
+  ++counters.rays;
+  if (hit.sphere_light()) return ps.scene.lights[hit.light].radiance;
+  if (!hit.valid()) return vec3(0.0f);
+  const SurfaceHit s = surface_at(ps.scene, hit, direction);
+  return s.emission + reflected_radiance(ps, settings, s, -direction, rng, counters);
+}
+
+// The `path` technique's per-pixel body: the sum of `samples` paths' reflected radiance from
+// G-buffer pixel i towards `eye` (0 where the pixel has no surface), path k drawing the numbers of
+// sample first_sample + k.
+BOUNCE_HD inline vec3 path_pixel(const PathScene& ps, const PathSettings& settings,
+                                 const ConstGBufferView& g, uint32_t i, vec3 eye,
+                                 uint32_t first_sample, int samples, uint32_t seed,
+                                 PathCounters& counters) {
+  vec3 sum(0.0f);
+  if (!g.hit(i)) return sum;
+  const SurfaceHit x = g.surface(i);
+  const vec3 wo = glm::normalize(eye - x.position);
+  for (int k = 0; k < samples; ++k) {
+    Pcg32 rng = path_rng(i, first_sample + uint32_t(k), seed);
+    sum += reflected_radiance(ps, settings, x, wo, rng, counters);
+  }
+  return sum;
+}
 
 }  // namespace bounce

@@ -7,6 +7,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/timer.h"
+#include "bounce/scene/scene_data.h"
 
 namespace bounce {
 
@@ -49,7 +50,8 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
   if (settings.time_limit_s < 0.0) fail("time limit {} s is negative", settings.time_limit_s);
 
   const LightPicker lights = LightPicker::build(scene);
-  const PathScene ps{scene, tracer, lights};
+  const SceneData data = SceneData::from(scene);
+  const PathScene ps = path_scene(data.view(), tracer, lights);
   PathSettings path = settings.path;
   path.min_bounces = 0;
   const int w = settings.width, h = settings.height;

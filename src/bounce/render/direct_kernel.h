@@ -1,0 +1,89 @@
+// The direct-light kernel: the light every light source sends towards the eye from one G-buffer
+// pixel. The body samples the lights and evaluates the BRDF; each sample hands its shadow ray
+// and the radiance it carries to a caller-given `shadow(ray, radiance)`, so the CPU launcher
+// (direct.cpp) can trace them in batches and a GPU launcher can trace each at once.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "bounce/core/device.h"
+#include "bounce/core/math.h"
+#include "bounce/core/qmc.h"
+#include "bounce/core/rng.h"
+#include "bounce/render/brdf.h"
+#include "bounce/render/gbuffer_view.h"
+#include "bounce/render/light_sampling.h"
+#include "bounce/scene/scene_view.h"
+
+namespace bounce {
+
+struct DirectSettings {
+  int light_samples = 16;  // per area or sphere light, per pixel
+  uint32_t frame = 0;      // rotates the sample pattern from frame to frame
+  uint32_t seed = 0;
+};
+
+// A per-pixel, per-light rotation of the sample pattern (Cranley-Patterson), as two floats.
+BOUNCE_HD inline vec2 pattern_offset(uint32_t pixel, uint32_t light, uint32_t frame,
+                                     uint32_t seed) {
+  const uint32_t h =
+      hash_u32(pixel ^ hash_u32(light * 0x9E3779B9u ^ hash_u32(frame + seed * 0x85EBCA6Bu)));
+  return {bits_to_unit_float(h), bits_to_unit_float(hash_u32(h ^ 0x68E31DA4u))};
+}
+
+// Direct light at pixel i of g as seen from `eye`: calls shadow(ray, radiance) for each light
+// sample whose radiance arrives if the ray is clear. The pixel's own emission (g.emission[i])
+// needs no ray: the launcher adds it.
+template <typename Shadow>
+BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, uint32_t i, vec3 eye,
+                            const DirectSettings& settings, Shadow&& shadow) {
+  if (!g.hit(i)) return;
+  const SurfaceHit s = g.surface(i);
+  const vec3 wo = glm::normalize(eye - s.position);
+  // Lights are sampled from the shadow rays' own origin, so the rays end exactly at the sample.
+  const vec3 p = offset_origin(s.position, s.geometric_normal);
+  const int n = settings.light_samples;
+  const float inv_n = 1.0f / float(n);
+  auto add = [&](const LightSample& ls, float scale) {
+    if (!ls.valid()) return;
+    const float cos_theta = glm::dot(s.normal, ls.wi);
+    // Light from below the face itself cannot arrive, whatever the shading normal says.
+    if (cos_theta <= 0.0f || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) return;
+    const vec3 radiance = eval_brdf(s, wo, ls.wi) * ls.weight * (cos_theta * scale);
+    if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
+  };
+
+  uint32_t light_id = 0;
+  for (uint32_t l = 0; l < scene.light_count; ++l) {
+    const LightRecord& light = scene.lights[l];
+    ++light_id;
+    if (light.type != LightType::kSphere) {
+      add(sample_punctual_light(light, p), 1.0f);
+      continue;
+    }
+    // Diffuse from cone samples; GGX specular from Karis' representative point, shadowed by
+    // the fraction of those samples that reach the light.
+    SurfaceHit diffuse_only = s;
+    diffuse_only.f0 = vec3(0.0f);
+    const vec3 specular = sphere_light_specular(light, s, p, wo) * inv_n;
+    const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+    for (int k = 0; k < n; ++k) {
+      const LightSample ls = sample_sphere_light(light, p, rotate_unit(hammersley(k, n), offset));
+      if (!ls.valid() || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) continue;
+      const float cos_theta = glm::max(glm::dot(s.normal, ls.wi), 0.0f);
+      const vec3 radiance =
+          eval_brdf(diffuse_only, wo, ls.wi) * ls.weight * (cos_theta * inv_n) + specular;
+      if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
+    }
+  }
+  for (uint32_t a = 0; a < scene.area_light_count; ++a) {
+    ++light_id;
+    const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+    for (int k = 0; k < n; ++k)
+      add(sample_area_light(scene, scene.area_lights[a], p, rotate_unit(hammersley(k, n), offset)),
+          inv_n);
+  }
+}
+
+}  // namespace bounce

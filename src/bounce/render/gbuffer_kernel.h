@@ -1,0 +1,44 @@
+// The G-buffer's per-pixel kernel: what one primary ray's hit leaves in the G-buffer. The CPU
+// launcher (gbuffer.cpp) traces the rays in coherent streams and calls this for each pixel; a
+// GPU launcher traces with the trace view and calls the same body.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+
+#include "bounce/core/device.h"
+#include "bounce/core/math.h"
+#include "bounce/render/gbuffer_view.h"
+#include "bounce/render/surface.h"
+#include "bounce/scene/scene_view.h"
+#include "bounce/trace/ray.h"
+
+namespace bounce {
+
+// Writes pixel i for a primary ray along unit `ray.direction` that met `hit` (a triangle, a
+// sphere light, or nothing). `forward` is the camera's viewing axis: depth is measured along it.
+BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const Ray& ray,
+                                    const Hit& hit, size_t i, const GBufferView& g) {
+  g.motion[i] = vec2(0.0f);
+  if (!hit.valid()) {
+    g.primitive[i] = g.mesh[i] = kNoPrimitive;
+    g.barycentric[i] = vec2(0.0f);
+    g.depth[i] = std::numeric_limits<float>::infinity();
+    SurfaceHit none;
+    none.normal = none.geometric_normal = vec3(0.0f);
+    // A sphere light in front shows its radiance; it has no surface to shade.
+    if (hit.sphere_light()) {
+      none.emission = scene.lights[hit.light].radiance;
+      g.depth[i] = hit.t * glm::dot(ray.direction, forward);
+    }
+    g.store(i, none);
+    return;
+  }
+  g.store(i, surface_at(scene, hit, ray.direction));
+  g.primitive[i] = scene.triangle_id(hit.mesh, hit.triangle);
+  g.mesh[i] = hit.mesh;
+  g.barycentric[i] = hit.barycentric;
+  g.depth[i] = hit.t * glm::dot(ray.direction, forward);
+}
+
+}  // namespace bounce
