@@ -108,7 +108,9 @@ TEST(TraceView, TracerCallsAnswerAsTheViewDoes) {
       EXPECT_EQ(h.light, expected.light) << i;
       EXPECT_EQ(h.mesh, expected.mesh) << i;
       EXPECT_EQ(h.triangle, expected.triangle) << i;
-      if (expected.any()) EXPECT_NEAR(h.t, expected.t, 1e-6f * (1.0f + expected.t)) << i;
+      if (expected.any()) {
+        EXPECT_NEAR(h.t, expected.t, 1e-6f * (1.0f + expected.t)) << i;
+      }
     }
     EXPECT_EQ(bool(blocked[i]), view.occluded(rays[i])) << i;
     EXPECT_EQ(tracer->occluded(rays[i]), view.occluded(rays[i])) << i;
