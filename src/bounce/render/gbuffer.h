@@ -37,37 +37,27 @@ struct GBuffer {
   bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }
   SurfaceHit surface(size_t i) const { return view().surface(i); }
 
-  GBufferView view() {
-    return {position.data(),
-            normal.data(),
-            geometric_normal.data(),
-            albedo.data(),
-            roughness.data(),
-            f0.data(),
-            emission.data(),
-            depth.data(),
-            primitive.data(),
-            mesh.data(),
-            barycentric.data(),
-            motion.data(),
-            width,
-            height};
-  }
-  ConstGBufferView view() const {
-    return {position.data(),
-            normal.data(),
-            geometric_normal.data(),
-            albedo.data(),
-            roughness.data(),
-            f0.data(),
-            emission.data(),
-            depth.data(),
-            primitive.data(),
-            mesh.data(),
-            barycentric.data(),
-            motion.data(),
-            width,
-            height};
+  GBufferView view() { return view_of<GBufferView>(*this); }
+  ConstGBufferView view() const { return view_of<ConstGBufferView>(*this); }
+
+ private:
+  // The one list of the arrays, for the writable and the read-only view.
+  template <typename View, typename Self>
+  static View view_of(Self& g) {
+    return {g.position.data(),
+            g.normal.data(),
+            g.geometric_normal.data(),
+            g.albedo.data(),
+            g.roughness.data(),
+            g.f0.data(),
+            g.emission.data(),
+            g.depth.data(),
+            g.primitive.data(),
+            g.mesh.data(),
+            g.barycentric.data(),
+            g.motion.data(),
+            g.width,
+            g.height};
   }
 };
 

@@ -93,8 +93,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   f.technique = TechniqueCounters{};
   {
     ScopedStage stage(f.times, "prepare");
-    technique_->prepare(PrepareContext{scene_, tracer_, change, settings.accumulate, frame_index_,
-                                       f.times, f.technique});
+    technique_->prepare(PrepareContext{scene_, scene_data_.view(), tracer_, change,
+                                       settings.accumulate, frame_index_, f.times, f.technique});
   }
   const int w = settings.width, h = settings.height;
   const CameraRays rays = CameraRays::from(camera, w, h);
@@ -120,8 +120,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   if (indirect) {
     ScopedStage stage(f.times, "indirect");
     f.indirect = Image(w, h);
-    const FrameContext context{scene_,       tracer_, f.gbuffer,  rays, change, settings.accumulate,
-                               frame_index_, f.times, f.technique};
+    const FrameContext context{scene_, scene_data_.view(),  tracer_,      f.gbuffer, rays,
+                               change, settings.accumulate, frame_index_, f.times,   f.technique};
     technique_->indirect(context, f.indirect);
     if (technique_->indirect_history() == IndirectHistory::kPerFrame)
       indirect_average_.add(f.indirect, rest);

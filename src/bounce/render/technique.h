@@ -23,6 +23,7 @@
 #include "bounce/scene/camera.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
+#include "bounce/scene/scene_view.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -36,6 +37,7 @@ struct TechniqueCounters {
 
 struct PrepareContext {
   const Scene& scene;
+  SceneView scene_view;  // the scene as kernels read it (kept current by the Renderer)
   const Tracer& tracer;
   const SceneChange& change;  // since the last frame (SceneChange::all() on the first)
   bool accumulate;            // FrameSettings::accumulate
@@ -50,6 +52,7 @@ struct PrepareContext {
 
 struct FrameContext {
   const Scene& scene;
+  SceneView scene_view;
   const Tracer& tracer;
   const GBuffer& gbuffer;
   const CameraRays& camera;

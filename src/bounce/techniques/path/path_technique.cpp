@@ -17,10 +17,6 @@ PathTracing::PathTracing() {
 
 void PathTracing::prepare(const PrepareContext& context) {
   const SceneChange& c = context.change;
-  if (c.everything)
-    scene_data_.build(context.scene);
-  else if (c.geometry() || c.lights || c.materials)
-    scene_data_.refresh(context.scene, c.moved_meshes);
   if (c.geometry() || c.lights || c.materials) lights_ = LightPicker::build(context.scene);
 }
 
@@ -32,7 +28,7 @@ void PathTracing::indirect(const FrameContext& context, Image& out) {
   }
   const bool accumulate = context.accumulate;
 
-  const PathScene ps = path_scene(scene_data_.view(), context.tracer, lights_);
+  const PathScene ps = path_scene(context.scene_view, context.tracer, lights_);
   PathSettings settings;
   settings.min_bounces = 1;
   settings.max_bounces = max_bounces_;

@@ -7,7 +7,6 @@
 
 #include "bounce/render/light_picker.h"
 #include "bounce/render/technique.h"
-#include "bounce/scene/scene_data.h"
 #include "bounce/techniques/path/path_tracer.h"
 
 namespace bounce {
@@ -29,7 +28,6 @@ class PathTracing final : public Technique {
   int samples_ = 1;
   int seed_ = 0;
 
-  SceneData scene_data_;  // the scene as the path kernels read it
   LightPicker lights_;
   std::vector<vec3> sums_;  // per pixel, over the frames since the last restart
   int frames_ = 0;
