@@ -8,7 +8,9 @@
 #include "bounce/render/photon_hash_grid.h"
 #include "bounce/render/photon_tracing.h"
 #include "bounce/render/technique.h"
+#include "bounce/scene/scene_data.h"
 #include "bounce/techniques/tiled/tile_bins.h"
+#include "bounce/techniques/tiled/tiled_kernels.h"
 
 namespace bounce {
 
@@ -56,7 +58,7 @@ class TiledPhotonMapping final : public Technique {
   };
   bool restart_needed(const FrameContext& context) const;
   void estimate(const FrameContext& context, float radius, Image& estimate);
-  vec3 estimate_at(const GBuffer& g, int x, int y, float radius) const;
+  TiledGatherView gather_view(const GBuffer& g, float radius) const;
 
   TiledSettings settings_;
   TiledSettings last_settings_;
@@ -64,6 +66,8 @@ class TiledPhotonMapping final : public Technique {
   int last_width_ = 0, last_height_ = 0;
   bool scene_dirty_ = true;
 
+  SceneData scene_data_;  // what the photon kernels read; rebuilt when the scene changed
+  bool scene_data_stale_ = true;
   PhotonTracer tracer_;
   PhotonBuffer photons_;
   TileBins bins_;
