@@ -117,6 +117,14 @@ def stage(bench_json, name):
     return float("nan"), float("nan")
 
 
+def technique_stages(bench_json):
+    """The technique's time, prepare (photon tracing) plus indirect (estimation), and the larger
+    of their deviations."""
+    prep, prep_sd = stage(bench_json, "prepare")
+    ind, ind_sd = stage(bench_json, "indirect")
+    return prep + ind, max(prep_sd, ind_sd)
+
+
 def one_bounce_args(paths, radius_pct):
     return ["--photons", paths, "--radius", f"{radius_pct:g}%", "--bounces", "1"]
 
@@ -163,7 +171,7 @@ def grid_cell(b, cfg, out, paths, radius):
     b.render(img, cfg.size, ["--spp", "1", *args])
     m = b.compare(out / "reference_1bounce.png", img, out / "grid" / f"{name}_error.png")
     total, total_sd = stage(j, "total")
-    ind, ind_sd = stage(j, "indirect")
+    ind, ind_sd = technique_stages(j)
     return {"paths": paths, "radius_pct": radius,
             "stored": j["photons"]["stored_per_frame"],
             "frame_ms": total, "frame_sd_ms": total_sd,
@@ -315,7 +323,7 @@ def plot_complexity(rows, cfg, out):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
     x = [r["triangles"] for r in rows]
-    for name in ("gbuffer", "direct", "indirect/photon trace", "indirect/clearance",
+    for name in ("gbuffer", "direct", "prepare/photon trace", "prepare/clearance",
                  "indirect/tile bins", "indirect/estimate low-res", "indirect/upsample + edges",
                  "total"):
         if name + "_ms" in rows[0]:
@@ -392,7 +400,7 @@ def write_index(out, cfg, grid, default_rows, budgets, complexity, meta):
                  f"{b['by_mse']['radius_pct']:g}%; best MSSIM {b['by_mssim']['mssim']:.4g} at "
                  f"{b['by_mssim']['paths']} paths, {b['by_mssim']['radius_pct']:g}%</p>")
     p.append("<h2>Scene complexity (section 6.2)</h2><img src='complexity.png'>")
-    cols = ["cubes", "triangles", "bvh_build_ms", "gbuffer_ms", "direct_ms", "indirect_ms", "total_ms"]
+    cols = ["cubes", "triangles", "bvh_build_ms", "gbuffer_ms", "direct_ms", "prepare_ms", "indirect_ms", "total_ms"]
     p.append(html_table(complexity, [c for c in cols if c in complexity[0]]))
     write_atomic(out / "index.html", "\n".join(p) + "\n")
 

@@ -104,12 +104,12 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
         // Each kind over the time of the stage that traces it.
         {"primary_per_s", per_second(r.primary_rays, r.gbuffer_ms)},
         {"shadow_per_s", per_second(r.shadow_rays, r.direct_ms)},
-        {"technique_per_s", per_second(r.technique_rays, r.indirect_ms)}}},
+        {"technique_per_s", per_second(r.technique_rays, r.technique_ms)}}},
       {"photons",
        {{"paths_per_frame", r.photon_paths / frames},
         {"stored_per_frame", r.photons_stored / frames},
-        // Photon paths over the whole indirect stage's time (tracing plus estimation).
-        {"paths_per_s", per_second(r.photon_paths, r.indirect_ms)}}},
+        // Photon paths over the technique's time (prepare: tracing; indirect: estimation).
+        {"paths_per_s", per_second(r.photon_paths, r.technique_ms)}}},
       {"flicker", flicker_json(r.temporal)},
       {"settle", settle_json(r.temporal)},
   };

@@ -112,7 +112,9 @@ void run_bench(BenchOptions o) {
     shadow += double(f.shadow_rays);
     gbuffer_ms += f.times.get("gbuffer");
     direct_ms += f.times.get("direct");
-    record.indirect_ms += f.times.get("indirect");
+    // A technique's time: its prepare and indirect stages (none for one without indirect light).
+    if (renderer.technique().has_indirect())
+      record.technique_ms += f.times.get("prepare") + f.times.get("indirect");
     record.technique_rays += double(f.technique.rays);
     record.photon_paths += double(f.technique.photon_paths);
     record.photons_stored += double(f.technique.photons_stored);

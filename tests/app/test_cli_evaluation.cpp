@@ -224,8 +224,10 @@ TEST(CliEvaluation, BenchJsonCountsThePhotonsAskedFor) {
   EXPECT_GT(photons["stored_per_frame"].get<double>(), 0.0);
   // Every path traces at least the ray it leaves its light on.
   EXPECT_GE(j["rays"]["technique_per_frame"].get<double>(), paths);
-  // Photon paths and technique rays are rated over the whole indirect stage.
-  const double indirect_s = stage_table(j).at("indirect").first * 1e-3;
+  // Photon paths and technique rays are rated over the technique's stages, prepare (photon
+  // tracing) and indirect (estimation).
+  const double indirect_s =
+      (stage_table(j).at("prepare").first + stage_table(j).at("indirect").first) * 1e-3;
   EXPECT_NEAR(photons["paths_per_s"].get<double>(), paths / indirect_s, 1e-9 * paths / indirect_s);
   const double technique_rate = j["rays"]["technique_per_frame"].get<double>() / indirect_s;
   EXPECT_NEAR(j["rays"]["technique_per_s"].get<double>(), technique_rate, 1e-9 * technique_rate);

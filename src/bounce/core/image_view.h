@@ -15,6 +15,12 @@ struct ImageViewT {
   int width = 0;
   int height = 0;
 
+  // A writable view reads as a read-only one.
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator ImageViewT<kTo>() const {
+    return {pixels, width, height};
+  }
+
   BOUNCE_HD size_t size() const { return size_t(width) * size_t(height); }
   BOUNCE_HD maybe_const_t<vec3, kConst>& at(int x, int y) const {
     return pixels[size_t(y) * size_t(width) + size_t(x)];

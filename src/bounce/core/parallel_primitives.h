@@ -61,18 +61,20 @@ T exclusive_scan(std::vector<T>& values) {
   return exclusive_scan(values.data(), values.data(), values.size());
 }
 
-// combine(...combine(combine(identity, map(0)), map(1))..., map(n - 1)), evaluated blockwise:
-// `combine` must be associative (and `identity` its identity) for that to be the same value.
+// combine(...combine(combine(identity, map(0)), map(1))..., map(n - 1)), evaluated in blocks of
+// `block` items (results combined in block order): `combine` must be associative (and `identity`
+// its identity) for that to be the same value. A small block suits expensive items (a row of
+// pixels); the result depends on the block size, never on the threads.
 template <typename T, typename Map, typename Combine>
-T parallel_reduce(size_t n, T identity, Map&& map, Combine&& combine) {
-  const size_t blocks = (n + kScanBlock - 1) / kScanBlock;
+T parallel_reduce(size_t n, T identity, Map&& map, Combine&& combine, size_t block = kScanBlock) {
+  const size_t blocks = (n + block - 1) / block;
   std::vector<T> partial(blocks, identity);
   parallel_for(
       blocks,
       [&](size_t b) {
-        const size_t end = std::min(n, (b + 1) * kScanBlock);
+        const size_t end = std::min(n, (b + 1) * block);
         T value = identity;
-        for (size_t i = b * kScanBlock; i < end; ++i) value = combine(value, map(i));
+        for (size_t i = b * block; i < end; ++i) value = combine(value, map(i));
         partial[b] = value;
       },
       1);

@@ -34,6 +34,13 @@ struct GBufferViewT {
   int width = 0;
   int height = 0;
 
+  // A writable view reads as a read-only one.
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator GBufferViewT<kTo>() const {
+    return {position, normal, geometric_normal, albedo, roughness, f0,
+            emission, depth,  primitive,        width,  height};
+  }
+
   BOUNCE_HD size_t size() const { return size_t(width) * size_t(height); }
   BOUNCE_HD size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
   BOUNCE_HD bool hit(size_t i) const { return primitive[i] != kNoPrimitive; }

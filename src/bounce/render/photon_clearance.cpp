@@ -2,8 +2,9 @@
 
 #include <array>
 
-#include "bounce/core/octahedral.h"
 #include "bounce/core/parallel.h"
+#include "bounce/render/photons.h"
+#include "bounce/trace/tracer.h"
 
 namespace bounce {
 
@@ -11,6 +12,7 @@ uint64_t compute_photon_clearance(const Tracer& tracer, float radius, PhotonBuff
   const size_t n = photons.size();
   photons.clearance.resize(n * kClearanceRays);
   photons.min_clearance.resize(n);
+  const PhotonView view = photons.view();
   constexpr size_t kBatch = 32;  // photons per tracer call
   parallel_for((n + kBatch - 1) / kBatch,
                [&](size_t batch) {
@@ -19,19 +21,18 @@ uint64_t compute_photon_clearance(const Tracer& tracer, float radius, PhotonBuff
                  const size_t begin = batch * kBatch, end = std::min(n, begin + kBatch);
                  size_t count = 0;
                  for (size_t i = begin; i < end; ++i) {
-                   const vec3 normal = photons.normal_dir[i];
-                   const Basis frame = Basis::from_normal(normal);
-                   // Just above the surface, so the rays skim it instead of hitting it.
-                   const vec3 origin = offset_origin(photons.position[i], normal);
+                   const ClearanceFrame f = clearance_frame(view, i);
                    for (int k = 0; k < kClearanceRays; ++k)
-                     rays[count++] = Ray{origin, 0.0f, clearance_direction(frame, k), radius};
+                     rays[count++] = clearance_ray(f, k, radius);
                  }
                  tracer.intersect(std::span<const Ray>(rays.data(), count),
                                   std::span<Hit>(hits.data(), count), false);
-                 for (size_t i = begin, r = 0; i < end; ++i)
+                 for (size_t i = begin, r = 0; i < end; ++i) {
+                   float distance[kClearanceRays];
                    for (int k = 0; k < kClearanceRays; ++k, ++r)
-                     photons.clearance[i * kClearanceRays + k] =
-                         hits[r].valid() ? hits[r].t : radius;
+                     distance[k] = clearance_distance(hits[r], radius);
+                   store_clearance(view, i, distance);
+                 }
                },
                4);
   return uint64_t(n) * kClearanceRays;

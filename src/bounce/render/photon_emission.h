@@ -1,12 +1,18 @@
 // Where photon paths start: every light (point, spot, directional, sphere, emissive triangles),
-// chosen in proportion to power by the same LightPicker the path tracer uses.
+// chosen in proportion to power by the same LightPicker the path tracer uses. emit_photon is a
+// kernel body over the scene view.
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
+#include "bounce/core/sampling.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/light_sampling.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_view.h"
 
 namespace bounce {
 
@@ -16,6 +22,15 @@ struct EmittedPhoton {
   vec3 flux;  // W carried by the path
 };
 
+// What emission reads besides the scene: the light picker and the disk directional lights emit
+// from.
+struct PhotonEmitterView {
+  LightPickerView picker;     // entries: the scene's lights, then its area lights
+  float scene_radius = 0.0f;  // covers the scene, for directional lights
+  vec3 scene_centre{0.0f};
+};
+static_assert(std::is_trivially_copyable_v<PhotonEmitterView>);
+
 struct PhotonEmitters {
   LightPicker picker;  // entries: Scene::lights, then Scene::area_lights
   vec3 total_power{0.0f};
@@ -24,11 +39,69 @@ struct PhotonEmitters {
 
   static PhotonEmitters from(const Scene& scene);
   bool empty() const { return picker.empty(); }
+  // Valid while this object lives and is not rebuilt.
+  PhotonEmitterView view() const { return {picker.view(), scene_radius, scene_centre}; }
 };
 
 // Emits path i of n: u (stratified over the paths) picks the light and the point on it, v (random)
 // the direction. Flux is normalised so that the paths' expected total equals the lights' power.
-EmittedPhoton emit_photon(const Scene& scene, const PhotonEmitters& emitters, vec2 u, vec2 v,
-                          uint32_t path_count);
+BOUNCE_HD inline EmittedPhoton emit_photon(const SceneView& scene,
+                                           const PhotonEmitterView& emitters, vec2 u, vec2 v,
+                                           uint32_t path_count) {
+  // Choose the light with u.x, then stretch u.x back over [0, 1) within its interval.
+  const LightPickerView& picker = emitters.picker;
+  const uint32_t k = picker.pick(u.x);
+  const float probability = picker.pmf[k];
+  u.x = picker.remap(k, u.x);
+  EmittedPhoton p;
+  if (k >= picker.light_count) {
+    const AreaLightView& area = scene.area_lights[k - picker.light_count];
+    p.flux = area.power() / (probability * float(path_count));
+    const AreaLightPoint q = sample_area_light_point(scene, area, u);
+    p.direction = Basis::from_normal(q.normal).to_world(sample_cosine_hemisphere(v));
+    p.origin = offset_origin(q.position, q.normal);
+    return p;
+  }
+  const LightRecord& light = scene.lights[k];
+  const vec3 power = light.power(emitters.scene_radius);
+  p.flux = power / (probability * float(path_count));
+
+  switch (light.type) {
+    case LightType::kPoint:
+      p.origin = light.position;
+      p.direction = sample_uniform_sphere(u);
+      break;
+    case LightType::kSpot: {
+      // Uniform in the outer cone; the falloff weights the flux (its mean over the cone is
+      // power / (intensity * cone solid angle), so the expected flux stays right).
+      p.origin = light.position;
+      p.direction =
+          Basis::from_normal(light.direction).to_world(sample_uniform_cone(u, light.cos_outer));
+      const float cone = kTwoPi * (1.0f - light.cos_outer);
+      const float mean_falloff =
+          glm::max(power.x + power.y + power.z, 1e-30f) /
+          glm::max((light.intensity.x + light.intensity.y + light.intensity.z) * cone, 1e-30f);
+      p.flux *= spot_falloff(light, p.direction) / mean_falloff;
+      break;
+    }
+    case LightType::kDirectional: {
+      // A disk across the scene, perpendicular to the light, behind the scene.
+      const Basis basis = Basis::from_normal(light.direction);
+      const vec2 d = sample_concentric_disk(u) * emitters.scene_radius;
+      p.origin = emitters.scene_centre + basis.t * d.x + basis.b * d.y -
+                 light.direction * (2.0f * emitters.scene_radius);
+      p.direction = light.direction;
+      break;
+    }
+    case LightType::kSphere: {
+      const vec3 n = sample_uniform_sphere(u);
+      p.origin = light.position + n * light.radius;
+      p.origin = offset_origin(p.origin, n);
+      p.direction = Basis::from_normal(n).to_world(sample_cosine_hemisphere(v));
+      break;
+    }
+  }
+  return p;
+}
 
 }  // namespace bounce

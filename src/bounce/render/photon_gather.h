@@ -6,10 +6,10 @@
 // 004's "sphere slice") and, when clearances exist, x is within its visibility polygon.
 #pragma once
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
-#include "bounce/core/octahedral.h"
 #include "bounce/render/photon_clearance.h"
-#include "bounce/render/photons.h"
+#include "bounce/render/photon_view.h"
 
 namespace bounce {
 
@@ -20,25 +20,24 @@ struct GatherSettings {
 };
 
 // Cone-filter weight of photon i at point x with normal n; 0 when the photon is rejected.
-// Needs photons.unpack_directions().
-inline float gather_weight(const PhotonBuffer& photons, size_t i, vec3 x, vec3 n,
-                           const GatherSettings& s) {
+// Needs the decoded directions (PhotonBuffer::unpack_directions()).
+BOUNCE_HD inline float gather_weight(const ConstPhotonView& photons, size_t i, vec3 x, vec3 n,
+                                     const GatherSettings& s) {
   const vec3 d = photons.position[i] - x;
   const float dist2 = glm::dot(d, d);
   if (dist2 >= s.radius * s.radius) return 0.0f;
   if (std::abs(glm::dot(d, n)) > s.slab) return 0.0f;
   if (glm::dot(photons.incident_dir[i], n) >= 0.0f) return 0.0f;  // arrived from behind
   // The visibility polygon matters only beyond the photon's nearest obstacle.
-  if (s.clearance && !photons.clearance.empty() &&
+  if (s.clearance && photons.clearance &&
       dist2 > photons.min_clearance[i] * photons.min_clearance[i] &&
-      !within_clearance(x, photons.position[i], photons.normal_dir[i],
-                        photons.clearance.data() + i * kClearanceRays))
+      !within_clearance(x, photons.position[i], photons.normal_dir[i], photons.clearance_of(i)))
     return 0.0f;
   return 1.0f - std::sqrt(dist2) / s.radius;
 }
 
 // Turns the weighted flux sum at a point into outgoing radiance.
-inline vec3 cone_filter_radiance(vec3 weighted_flux, vec3 albedo, float radius) {
+BOUNCE_HD inline vec3 cone_filter_radiance(vec3 weighted_flux, vec3 albedo, float radius) {
   constexpr float kConeNormalisation = 1.0f - 2.0f / 3.0f;  // k = 1
   return albedo * kInvPi * weighted_flux / (kConeNormalisation * kPi * radius * radius);
 }

@@ -14,13 +14,14 @@
 #include <span>
 #include <vector>
 
+#include "bounce/core/device.h"
 #include "bounce/core/math.h"
 
 namespace bounce {
 
 // True when p is strictly within radius sqrt(radius2) of x. The one distance test of the grid, so
 // callers that need the same set (brute-force cross-checks) can use exactly the same arithmetic.
-inline bool within_radius(vec3 p, vec3 x, float radius2) {
+BOUNCE_HD inline bool within_radius(vec3 p, vec3 x, float radius2) {
   const vec3 d = p - x;
   return d.x * d.x + d.y * d.y + d.z * d.z < radius2;
 }
@@ -46,18 +47,18 @@ struct PhotonHashGridView {
   // hand because GCC turns std::fmin/fmax and, after a clamp, std::floor into library calls. NaN
   // fails both comparisons and maps to a bound, so the int conversion is always defined; within
   // the clamp it truncates exactly and the correction makes it a floor.
-  static int32_t cell_coord(float scaled) {
+  BOUNCE_HD static int32_t cell_coord(float scaled) {
     scaled = scaled > -kCellLimit ? scaled : -kCellLimit;
     scaled = scaled < kCellLimit ? scaled : kCellLimit;
     const int32_t truncated = int32_t(scaled);
     return truncated - int32_t(scaled < float(truncated));
   }
-  ivec3 cell(vec3 p) const {
+  BOUNCE_HD ivec3 cell(vec3 p) const {
     return {cell_coord(p.x * inv_cell), cell_coord(p.y * inv_cell), cell_coord(p.z * inv_cell)};
   }
   // Large-prime XOR hash (Teschner et al. 2003) followed by a full-avalanche finaliser (Wellons'
   // lowbias32), since the raw XOR hash has poor low bits and we keep only the low bits.
-  uint32_t slot(ivec3 c) const {
+  BOUNCE_HD uint32_t slot(ivec3 c) const {
     uint32_t h = uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u;
     h ^= h >> 16;
     h *= 0x7feb352du;
@@ -71,7 +72,7 @@ struct PhotonHashGridView {
   // x - r and x + r: float rounding is monotonic, so a point p with |p - x| < r per axis (which
   // within_radius implies) has lo <= cell(p) <= hi exactly, whatever the rounding. For r <= radius
   // the range is 1 or 2 cells per axis (3 only when rounding straddles two boundaries).
-  void cell_range(vec3 x, float r, ivec3& lo, ivec3& hi) const {
+  BOUNCE_HD void cell_range(vec3 x, float r, ivec3& lo, ivec3& hi) const {
     lo = cell(x - vec3(r));
     hi = cell(x + vec3(r));
     // Only a query radius above the build radius can exceed 3 cells; stay in bounds regardless.
@@ -81,7 +82,7 @@ struct PhotonHashGridView {
   // Calls visit(index) for every point strictly within `r` (<= radius) of x, each once: cells in
   // z, y, x order, slots visited once even when two cells share one, index order within a slot.
   template <typename Visit>
-  void for_each_within(vec3 x, float r, Visit&& visit) const {
+  BOUNCE_HD void for_each_within(vec3 x, float r, Visit&& visit) const {
     assert(!(r > radius));  // NaN and r <= 0 are fine: they find nothing
     if (count == 0 || !(r > 0.0f) || !is_finite(x)) return;
     const float r2 = r * r;

@@ -32,6 +32,13 @@ struct PhotonViewT {
   Ptr<vec3> normal_dir = nullptr;
   uint32_t count = 0;
 
+  // A writable view reads as a read-only one.
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator PhotonViewT<kTo>() const {
+    return {position,      flux,         incident,   normal, clearance,
+            min_clearance, incident_dir, normal_dir, count};
+  }
+
   BOUNCE_HD size_t size() const { return count; }
   BOUNCE_HD Ptr<float> clearance_of(size_t i) const { return clearance + i * kClearanceRays; }
 };

@@ -143,11 +143,11 @@ TEST(TiledPhotons, TilesGiveEachPixelExactlyTheBruteForcePhotons) {
       std::vector<uint32_t> from_tile, brute;
       const size_t t = bins.tile_of_pixel(x, y);
       for (const uint32_t* k = bins.begin(t); k != bins.end(t); ++k)
-        if (gather_weight(c.photons, *k, p, n, gs) > 0.0f) from_tile.push_back(*k);
+        if (gather_weight(c.photons.view(), *k, p, n, gs) > 0.0f) from_tile.push_back(*k);
       for (uint32_t k = 0; k < c.photons.size(); ++k) {
         // Plain distance test for the sphere of influence, independent of the tile code.
         if (glm::length(c.photons.position[k] - p) >= radius) continue;
-        if (gather_weight(c.photons, k, p, n, gs) > 0.0f) brute.push_back(k);
+        if (gather_weight(c.photons.view(), k, p, n, gs) > 0.0f) brute.push_back(k);
       }
       ASSERT_EQ(from_tile, brute) << "pixel " << x << ", " << y;
       checked += brute.size();
@@ -178,14 +178,14 @@ TEST(TiledPhotons, ConeFilterOnAUniformlyIrradiatedPlaneGivesTheIrradiance) {
     const GatherSettings gs{radius, 0.01f, false};
     vec3 sum(0.0f);
     for (size_t k = 0; k < photons.size(); ++k)
-      sum += photons.flux[k] * gather_weight(photons, k, x, normal, gs);
+      sum += photons.flux[k] * gather_weight(photons.view(), k, x, normal, gs);
     const vec3 radiance = cone_filter_radiance(sum, albedo, radius);
     const vec3 expected = albedo * kInvPi * irradiance;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(radiance[c], expected[c], 0.02f * expected[c]) << c;
     // Photons arriving from below the surface are not counted.
     vec3 behind(0.0f);
     for (size_t k = 0; k < photons.size(); ++k)
-      behind += photons.flux[k] * gather_weight(photons, k, x, -normal, gs);
+      behind += photons.flux[k] * gather_weight(photons.view(), k, x, -normal, gs);
     EXPECT_EQ(behind, vec3(0.0f));
   }
 }

@@ -7,6 +7,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/core/parallel_primitives.h"
 #include "bounce/render/photon_clearance.h"
 #include "bounce/render/photon_gather.h"
 
@@ -64,33 +65,27 @@ std::vector<std::string> TiledPhotonMapping::still_defaults() const {
   return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
 }
 
-vec3 TiledPhotonMapping::estimate_at(const GBuffer& g, int x, int y, float radius) const {
-  const size_t i = size_t(y) * g.width + x;
-  if (!g.hit(i)) return vec3(0.0f);
-  const vec3 p = g.position[i], n = g.normal[i];
-  const GatherSettings gs{radius, slab_, settings_.leak_guard};
-  vec3 sum(0.0f);
-  const auto visit = [&](uint32_t k) {
-    const float w = gather_weight(photons_, k, p, n, gs);
-    if (w > 0.0f) sum += photons_.flux[k] * w;
-  };
-  if (settings_.gather == 0) {
-    const size_t t = bins_.tile_of_pixel(x, y);
-    for (const uint32_t* k = bins_.begin(t); k != bins_.end(t); ++k) visit(*k);
-  } else {
-    grid_.for_each_within(p, radius, visit);
-  }
-  return cone_filter_radiance(sum, g.albedo[i], radius);
+TiledGatherView TiledPhotonMapping::gather_view(const GBuffer& g, float radius) const {
+  TiledGatherView v;
+  v.g = g.view();
+  v.photons = photons_.view();
+  v.settings = {radius, slab_, settings_.leak_guard};
+  v.use_grid = settings_.gather != 0;
+  if (v.use_grid)
+    v.grid = grid_.view();
+  else
+    v.bins = bins_.view();
+  return v;
 }
 
 void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& out) {
   const GBuffer& g = c.gbuffer;
+  const TiledGatherView gather = gather_view(g, radius);
+  const ImageView image = out.view();
   const int f = settings_.lowres;
   if (f == 1) {
-    parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) out.at(x, y) = estimate_at(g, x, y, radius);
-    });
+    parallel_for_2d(g.width, g.height,
+                    [&](int x, int y) { image.at(x, y) = gather_pixel(gather, x, y); });
     edge_pixels_ = 0;
     return;
   }
@@ -103,102 +98,85 @@ void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& ou
   low.normal.resize(n);
   low.position.resize(n);
   low.valid.resize(n);
+  const LowResView low_view{low.radiance.data(),
+                            low.normal.data(),
+                            low.position.data(),
+                            low.valid.data(),
+                            low.width,
+                            low.height,
+                            f};
   {
     ScopedStage stage(c.times, "indirect/estimate low-res");
-    parallel_for_tiles(low.width, low.height, 8, [&](int x0, int y0, int x1, int y1) {
-      for (int ly = y0; ly < y1; ++ly)
-        for (int lx = x0; lx < x1; ++lx) {
-          const int x = std::min(lx * f + f / 2, g.width - 1);
-          const int y = std::min(ly * f + f / 2, g.height - 1);
-          const size_t i = size_t(y) * g.width + x, l = size_t(ly) * low.width + lx;
-          low.valid[l] = g.hit(i);
-          low.normal[l] = g.normal[i];
-          low.position[l] = g.position[i];
-          low.radiance[l] = estimate_at(g, x, y, radius);
-        }
-    });
+    parallel_for_2d(low.width, low.height,
+                    [&](int lx, int ly) { estimate_low_res(gather, low_view, lx, ly); });
   }
   // Bilinear upsampling; where the interpolated normal or position disagrees with the pixel's
   // own (an edge), estimate the pixel at full resolution.
   ScopedStage stage(c.times, "indirect/upsample + edges");
-  const float max_gap = settings_.edge_distance * diagonal_;
-  std::vector<uint32_t> edge_counts(size_t(g.height), 0);
-  parallel_for(
-      size_t(g.height),
+  const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
+                       settings_.show_edges};
+  const ConstLowResView low_read{low.radiance.data(),
+                                 low.normal.data(),
+                                 low.position.data(),
+                                 low.valid.data(),
+                                 low.width,
+                                 low.height,
+                                 f};
+  // A task per row: the row's interpolation weights are shared, and the views are copied in so
+  // that the compiler keeps their pointers in registers. The edges are counted row by row.
+  edge_pixels_ = parallel_reduce(
+      size_t(g.height), size_t(0),
       [&](size_t y) {
-        const float gy = (float(y) + 0.5f) / float(f) - 0.5f;
-        const int ly0 = glm::clamp(int(std::floor(gy)), 0, low.height - 1);
-        const int ly1 = std::min(ly0 + 1, low.height - 1);
-        const float fy = glm::clamp(gy - float(ly0), 0.0f, 1.0f);
-        for (int x = 0; x < g.width; ++x) {
-          const size_t i = y * size_t(g.width) + size_t(x);
-          if (!g.hit(i)) {
-            out.at(x, int(y)) = vec3(0.0f);
-            continue;
-          }
-          const float gx = (float(x) + 0.5f) / float(f) - 0.5f;
-          const int lx0 = glm::clamp(int(std::floor(gx)), 0, low.width - 1);
-          const int lx1 = std::min(lx0 + 1, low.width - 1);
-          const float fx = glm::clamp(gx - float(lx0), 0.0f, 1.0f);
-          const size_t l[4] = {size_t(ly0) * low.width + lx0, size_t(ly0) * low.width + lx1,
-                               size_t(ly1) * low.width + lx0, size_t(ly1) * low.width + lx1};
-          const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-          bool edge = false;
-          vec3 normal(0.0f), position(0.0f), radiance(0.0f);
-          for (int k = 0; k < 4; ++k) {
-            if (!low.valid[l[k]]) edge = edge || w[k] > 0.0f;
-            normal += w[k] * low.normal[l[k]];
-            position += w[k] * low.position[l[k]];
-            radiance += w[k] * low.radiance[l[k]];
-          }
-          const float len = glm::length(normal);
-          edge = edge || len <= 0.0f ||
-                 glm::dot(g.normal[i], normal / len) < settings_.edge_normal ||
-                 glm::length(g.position[i] - position) > max_gap;
-          if (edge) {
-            ++edge_counts[y];
-            radiance =
-                settings_.show_edges ? vec3(1.0f, 1.0f, 0.0f) : estimate_at(g, x, int(y), radius);
-          }
-          out.at(x, int(y)) = radiance;
-        }
+        const TiledGatherView v = gather;
+        const ConstLowResView l = low_read;
+        const UpsampleRow row = upsample_row(l, int(y));
+        size_t edge_count = 0;
+        for (int x = 0; x < g.width; ++x)
+          edge_count += upsample_pixel(v, l, edges, row, image, x, int(y)) ? 1 : 0;
+        return edge_count;
       },
-      4);
-  edge_pixels_ = 0;
-  for (uint32_t e : edge_counts) edge_pixels_ += e;
+      [](size_t a, size_t b) { return a + b; }, 4);
 }
 
-void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
+// Photons depend on the scene, not the pixels: they are traced (and their clearances found) in
+// prepare, before the G-buffer. A change, or accumulation off, restarts at the full radius.
+void TiledPhotonMapping::prepare(const PrepareContext& c) {
   diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
   const float base = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
-  if (!c.continue_accumulation() || passes_ == 0 || accumulated_.width() != out.width() ||
-      accumulated_.height() != out.height()) {
+  if (!c.continue_accumulation() || passes_ == 0) {
     passes_ = 0;
     radius2_ = base * base;
-    accumulated_ = Image(out.width(), out.height());
+    restart_ = true;
   }
   const float radius = std::sqrt(radius2_);
   last_radius_ = radius;
   slab_ = settings_.slab * radius;
-
   {
-    ScopedStage stage(c.times, "indirect/photon trace");
+    ScopedStage stage(c.times, "prepare/photon trace");
     PhotonTraceSettings ts;
     ts.paths = uint32_t(settings_.photons);
     ts.max_bounces = settings_.bounces;
     ts.seed = uint32_t(settings_.seed);
     ts.pass = passes_;
-    const PhotonTraceStats stats = tracer_.trace(c.scene, c.tracer, ts, photons_);
+    const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons_);
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
   }
   if (settings_.leak_guard) {
-    ScopedStage stage(c.times, "indirect/clearance");
+    ScopedStage stage(c.times, "prepare/clearance");
     c.counters.rays += compute_photon_clearance(c.tracer, radius, photons_);
   } else {
     photons_.clearance.clear();
   }
+}
+
+void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
+  if (restart_ || accumulated_.width() != out.width() || accumulated_.height() != out.height()) {
+    accumulated_ = Image(out.width(), out.height());
+    restart_ = false;
+  }
+  const float radius = last_radius_;
   {
     ScopedStage stage(c.times, settings_.gather == 0 ? "indirect/tile bins" : "indirect/hash grid");
     if (settings_.gather == 0)

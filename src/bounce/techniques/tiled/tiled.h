@@ -9,6 +9,7 @@
 #include "bounce/render/photon_tracing.h"
 #include "bounce/render/technique.h"
 #include "bounce/techniques/tiled/tile_bins.h"
+#include "bounce/techniques/tiled/tiled_kernels.h"
 
 namespace bounce {
 
@@ -27,8 +28,6 @@ struct TiledSettings {
   float edge_distance = 0.01f;  // ... or beyond this position gap, relative to the diagonal
   bool show_edges = false;      // debug view: re-estimated pixels in yellow
   int seed = 0;
-
-  bool operator==(const TiledSettings&) const = default;
 };
 
 class TiledPhotonMapping final : public Technique {
@@ -39,6 +38,9 @@ class TiledPhotonMapping final : public Technique {
   IndirectHistory indirect_history() const override { return IndirectHistory::kAccumulated; }
   std::vector<TechniqueOption> options() const override;
   std::vector<std::string> still_defaults() const override;
+  // Traces this frame's photons and their clearances (world space, before the G-buffer).
+  void prepare(const PrepareContext& context) override;
+  // Bins the photons for the G-buffer's pixels, gathers and averages the passes at rest.
   void indirect(const FrameContext& context, Image& out) override;
 
   TiledSettings& settings() { return settings_; }
@@ -57,7 +59,7 @@ class TiledPhotonMapping final : public Technique {
     std::vector<uint8_t> valid;
   };
   void estimate(const FrameContext& context, float radius, Image& estimate);
-  vec3 estimate_at(const GBuffer& g, int x, int y, float radius) const;
+  TiledGatherView gather_view(const GBuffer& g, float radius) const;
 
   TiledSettings settings_;
 
@@ -69,6 +71,7 @@ class TiledPhotonMapping final : public Technique {
   Image pass_estimate_;
   Image accumulated_;
   uint32_t passes_ = 0;
+  bool restart_ = true;   // prepare restarted the passes: indirect clears its average
   float radius2_ = 0.0f;  // squared radius of the next pass
   float last_radius_ = 0.0f;
   float diagonal_ = 1.0f;
