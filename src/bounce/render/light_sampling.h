@@ -97,25 +97,29 @@ BOUNCE_HD inline vec3 point_on_triangle(vec3 p0, vec3 p1, vec3 p2, vec2 v) {
   return (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
 }
 
+// The one implementation behind both forms below: `meshes` is the scene's meshes (host Mesh or
+// MeshView; both index positions and triangles alike), the rest the area light's arrays.
+template <typename Meshes>
+BOUNCE_HD inline AreaLightPoint area_light_point_on(const Meshes& meshes,
+                                                    const TriangleRef* triangles,
+                                                    const vec3* normals, const float* cdf,
+                                                    uint32_t count, vec2 u) {
+  const AreaLightTriangle pick = pick_area_light_triangle(cdf, count, u);
+  const TriangleRef ref = triangles[pick.index];
+  const auto& mesh = meshes[ref.mesh];
+  const uvec3 tri = mesh.triangles[ref.triangle];
+  return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
+                            pick.v),
+          normals[pick.index]};
+}
 BOUNCE_HD inline AreaLightPoint sample_area_light_point(const SceneView& scene,
                                                         const AreaLightView& light, vec2 u) {
-  const AreaLightTriangle pick = pick_area_light_triangle(light.cdf, light.triangle_count, u);
-  const TriangleRef ref = light.triangles[pick.index];
-  const MeshView& mesh = scene.meshes[ref.mesh];
-  const uvec3 tri = mesh.triangles[ref.triangle];
-  return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
-                            pick.v),
-          light.normals[pick.index]};
+  return area_light_point_on(scene.meshes, light.triangles, light.normals, light.cdf,
+                             light.triangle_count, u);
 }
 inline AreaLightPoint sample_area_light_point(const Scene& scene, const AreaLight& light, vec2 u) {
-  const AreaLightTriangle pick =
-      pick_area_light_triangle(light.cdf.data(), uint32_t(light.cdf.size()), u);
-  const TriangleRef ref = light.triangles[pick.index];
-  const Mesh& mesh = scene.meshes[ref.mesh];
-  const uvec3 tri = mesh.triangles[ref.triangle];
-  return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
-                            pick.v),
-          light.normals[pick.index]};
+  return area_light_point_on(scene.meshes, light.triangles.data(), light.normals.data(),
+                             light.cdf.data(), uint32_t(light.cdf.size()), u);
 }
 
 // Area light made of emissive triangles, sampled by area: the sample towards point q of a light

@@ -115,13 +115,7 @@ void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& ou
   ScopedStage stage(c.times, "indirect/upsample + edges");
   const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
                        settings_.show_edges};
-  const ConstLowResView low_read{low.radiance.data(),
-                                 low.normal.data(),
-                                 low.position.data(),
-                                 low.valid.data(),
-                                 low.width,
-                                 low.height,
-                                 f};
+  const ConstLowResView low_read = low_view;
   // A task per row: the row's interpolation weights are shared, and the views are copied in so
   // that the compiler keeps their pointers in registers. The edges are counted row by row.
   edge_pixels_ = parallel_reduce(

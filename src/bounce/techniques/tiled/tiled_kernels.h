@@ -64,6 +64,11 @@ struct LowResViewT {
   int factor = 2;
 
   BOUNCE_HD size_t index(int lx, int ly) const { return size_t(ly) * size_t(width) + size_t(lx); }
+  // A writable view reads as a read-only one.
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator LowResViewT<kTo>() const {
+    return {radiance, normal, position, valid, width, height, factor};
+  }
 };
 using LowResView = LowResViewT<false>;
 using ConstLowResView = LowResViewT<true>;
