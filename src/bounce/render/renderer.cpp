@@ -36,20 +36,26 @@ std::vector<std::string> Renderer::parameter_state(const FrameSettings& settings
   return state;
 }
 
-SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& settings,
-                                  bool ignore_size) const {
+SceneChange Renderer::change_since_last(const Camera& camera, const FrameSettings& settings,
+                                        const std::vector<std::string>& parameters,
+                                        bool ignore_size) const {
   SceneChange change = pending_;
   const bool resized =
       !ignore_size && (settings.width != last_width_ || settings.height != last_height_);
   change.camera |= resized || !(camera == last_camera_);
-  change.parameters |= parameter_state(settings) != last_parameters_;
+  change.parameters |= parameters != last_parameters_;
   return change;
 }
 
-void Renderer::RunningAverage::add(Image& image, bool rest) {
+SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& settings,
+                                  bool ignore_size) const {
+  return change_since_last(camera, settings, parameter_state(settings), ignore_size);
+}
+
+void Renderer::RunningAverage::add(Image& image, bool accumulate, bool rest) {
   if (!rest || frames == 0) {
     frames = 1;
-    sum = image;
+    if (accumulate) sum = image;  // the first frame of a new average; nothing to keep otherwise
     return;
   }
   ++frames;
@@ -71,12 +77,13 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     fail("light samples must be positive (got {})", settings.light_samples);
   Frame& f = frame_;
   f.times.clear();
-  f.change = next_change(camera, settings);
+  std::vector<std::string> parameters = parameter_state(settings);
+  f.change = change_since_last(camera, settings, parameters, false);
   pending_ = SceneChange{};
   last_camera_ = camera;
   last_width_ = settings.width;
   last_height_ = settings.height;
-  last_parameters_ = parameter_state(settings);
+  last_parameters_ = std::move(parameters);
   const SceneChange& change = f.change;
   const bool rest = settings.accumulate && !change.any();
   {
@@ -113,7 +120,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
     f.shadow_rays =
         compute_direct(scene_data_.view(), tracer_, f.gbuffer, rays.origin, direct, f.direct);
-    direct_average_.add(f.direct, rest);
+    direct_average_.add(f.direct, settings.accumulate, rest);
   }
   f.frames_averaged = direct_average_.frames;
   const bool indirect = technique_->has_indirect();
@@ -124,7 +131,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
                                change, settings.accumulate, frame_index_, f.times,   f.technique};
     technique_->indirect(context, f.indirect);
     if (technique_->indirect_history() == IndirectHistory::kPerFrame)
-      indirect_average_.add(f.indirect, rest);
+      indirect_average_.add(f.indirect, settings.accumulate, rest);
   } else {
     f.indirect = Image();
   }

@@ -74,11 +74,15 @@ class Renderer {
  private:
   // A frame's parameters as text: the technique's and the frame settings that change images.
   std::vector<std::string> parameter_state(const FrameSettings& settings) const;
+  // Pending scene edits plus what the camera, size and `parameters` (parameter_state) add.
+  SceneChange change_since_last(const Camera& camera, const FrameSettings& settings,
+                                const std::vector<std::string>& parameters, bool ignore_size) const;
   // Averages `image` with the frames before it while at rest; restarts when `rest` is false.
+  // Without accumulation nothing is kept.
   struct RunningAverage {
     Image sum;
     int frames = 0;
-    void add(Image& image, bool rest);
+    void add(Image& image, bool accumulate, bool rest);
   };
 
   const Scene& scene_;

@@ -140,7 +140,6 @@ void TiledPhotonMapping::prepare(const PrepareContext& c) {
   if (!c.continue_accumulation() || passes_ == 0) {
     passes_ = 0;
     radius2_ = base * base;
-    restart_ = true;
   }
   const float radius = std::sqrt(radius2_);
   last_radius_ = radius;
@@ -166,10 +165,9 @@ void TiledPhotonMapping::prepare(const PrepareContext& c) {
 }
 
 void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
-  if (restart_ || accumulated_.width() != out.width() || accumulated_.height() != out.height()) {
+  // No pass yet: prepare restarted, so the average starts afresh.
+  if (passes_ == 0 || accumulated_.width() != out.width() || accumulated_.height() != out.height())
     accumulated_ = Image(out.width(), out.height());
-    restart_ = false;
-  }
   const float radius = last_radius_;
   {
     ScopedStage stage(c.times, settings_.gather == 0 ? "indirect/tile bins" : "indirect/hash grid");

@@ -71,7 +71,6 @@ class TiledPhotonMapping final : public Technique {
   Image pass_estimate_;
   Image accumulated_;
   uint32_t passes_ = 0;
-  bool restart_ = true;   // prepare restarted the passes: indirect clears its average
   float radius2_ = 0.0f;  // squared radius of the next pass
   float last_radius_ = 0.0f;
   float diagonal_ = 1.0f;
