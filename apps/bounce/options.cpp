@@ -90,13 +90,21 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.footer(technique_parameters_help());
 }
 
+namespace {
+// "--a, --b": a technique's option flags, for help and error messages.
+std::string flag_list(const std::vector<TechniqueOption>& options) {
+  std::string flags;
+  for (const TechniqueOption& option : options)
+    flags += (flags.empty() ? "" : ", ") + ("--" + option.flag);
+  return flags;
+}
+}  // namespace
+
 std::string technique_parameters_help() {
   std::string text = "Technique parameters (--param NAME=VALUE):\n";
   for (const auto& name : technique_names()) {
     const auto technique = make_technique(name);
-    std::string flags;
-    for (const TechniqueOption& option : technique->options())
-      flags += (flags.empty() ? "" : ", ") + ("--" + option.flag);
+    const std::string flags = flag_list(technique->options());
     if (!flags.empty()) text += fmt::format("  {} options: {}\n", name, flags);
     const auto& params = technique->params().all();
     if (params.empty()) text += "  " + name + ": none\n";
@@ -132,8 +140,7 @@ void apply_parameters(const FrameOptions& o, Technique& technique) {
     const auto it = std::find_if(declared.begin(), declared.end(),
                                  [&](const TechniqueOption& d) { return d.flag == flag; });
     if (it == declared.end()) {
-      std::string own;
-      for (const TechniqueOption& d : declared) own += (own.empty() ? "" : ", ") + ("--" + d.flag);
+      const std::string own = flag_list(declared);
       fail("--{} is not an option of this technique (its options: {})", flag,
            own.empty() ? "none" : own);
     }
