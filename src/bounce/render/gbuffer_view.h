@@ -37,8 +37,8 @@ struct GBufferViewT {
   // A writable view reads as a read-only one.
   template <bool kTo>
   requires(kTo && !kConst) BOUNCE_HD operator GBufferViewT<kTo>() const {
-    return {position, normal, geometric_normal, albedo, roughness, f0,
-            emission, depth,  primitive,        width,  height};
+    return {position,  normal, geometric_normal, albedo, roughness, f0,    emission, depth,
+            primitive, mesh,   barycentric,      motion, width,     height};
   }
 
   BOUNCE_HD size_t size() const { return size_t(width) * size_t(height); }

@@ -1,0 +1,101 @@
+// Temporal reuse and spatial denoising of a frame's light, after Schied et al. 2017,
+// "Spatiotemporal Variance-Guided Filtering" (SVGF). A pipeline stage of the Renderer, run after
+// direct and indirect light, before composite, for every technique.
+//
+// Per frame, on direct light (emission seen directly set apart) and indirect light separately:
+//  1. demodulate by the G-buffer's albedo, so texture detail is not blurred;
+//  2. reproject last frame's history through the G-buffer's motion vectors; a history sample is
+//     kept only where depth, normal and object id agree (disocclusion test), else the pixel's
+//     history length restarts at zero;
+//  3. blend: alpha = max(1 / history_length, 1 / cap), with luminance moments alongside, after
+//     clipping the history to the current frame's neighbourhood (mean +- gamma sigma) when the
+//     world changed, so moved lights and objects leave no ghosts;
+//  4. an edge-avoiding a-trous wavelet filter guided by depth, normals and the luminance variance
+//     of the accumulated estimate (it fades as history grows, so frames at rest converge to the
+//     unbiased average);
+//  5. remodulate, add the emission back.
+// The unfiltered accumulation is the next frame's history.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bounce/core/image.h"
+#include "bounce/core/timer.h"
+#include "bounce/render/gbuffer.h"
+#include "bounce/render/params.h"
+
+namespace bounce {
+
+struct DenoiseSettings {
+  bool temporal = true;           // temporal accumulation through reprojection
+  bool spatial = true;            // the a-trous filter
+  int atrous_iterations = 4;      // a-trous passes (step 1, 2, 4, ...)
+  float sigma_luminance = 4.0f;   // luminance edge-stopping, in standard deviations
+  float sigma_normal = 128.0f;    // normal edge-stopping exponent
+  float sigma_depth = 1.0f;       // depth edge-stopping, relative to the local depth gradient
+  int history_max = 32;           // frames of history a pixel keeps while anything moves
+  int accumulated_history = 4;    // the same for indirect light a technique accumulates itself
+  float clip_gamma = 1.25f;       // variance clipping box half-width in sigmas (world changes)
+  float depth_tolerance = 0.05f;  // disocclusion: relative depth difference
+  float normal_tolerance = 0.9f;  // disocclusion: minimum normal agreement (cosine)
+
+  bool operator==(const DenoiseSettings&) const = default;
+};
+
+// How this frame's history relates to the last frame's (chosen by the Renderer from the
+// SceneChange and FrameSettings).
+enum class HistoryState {
+  kReset,         // no usable history: first frame, new size, technique or parameters
+  kRest,          // nothing changed: running average, no cap on the history length
+  kCameraMoved,   // only the camera moved: reproject, history capped at history_max
+  kWorldChanged,  // lights, materials or meshes changed: reproject, cap, clip the history
+};
+
+// What the viewer shows instead of the denoised image (debug views); not a parameter, so
+// switching it keeps the history.
+enum class DenoiseView {
+  kDenoised,  // the pipeline's image
+  kRaw,       // this frame's light as the techniques produced it, before any reuse
+  kHistory,   // history length per pixel (black: none, white: history_max or more)
+  kMotion,    // screen-space motion (red: x, green: y; 0.5 is still)
+  kVariance,  // the luminance variance that guides the filter
+};
+
+struct DenoiseFrame {
+  const GBuffer& gbuffer;  // this frame's, with motion filled
+  HistoryState state;
+  bool indirect_accumulated;  // the technique accumulates its indirect light (capped history)
+  StageTimes& times;          // sub-stages "denoise/..."
+};
+
+class Denoiser {
+ public:
+  Denoiser();
+  ParamSet& params() { return params_; }
+  const ParamSet& params() const { return params_; }
+  DenoiseSettings& settings() { return settings_; }
+  const DenoiseSettings& settings() const { return settings_; }
+
+  // Replaces `direct` (direct light plus the emission the G-buffer saw) and, when not null,
+  // `indirect` by their accumulated and filtered versions, in place. Images are the G-buffer's
+  // size. Keeps what the next frame reprojects.
+  void run(const DenoiseFrame& frame, Image& direct, Image* indirect);
+
+  // Writes a debug view of the last run into `out` (sized to match). kRaw needs keep_raw(true)
+  // before the run.
+  void debug_view(DenoiseView view, Image& out) const;
+  void keep_raw(bool keep) { keep_raw_ = keep; }
+  // Per pixel history length of the last run (frames), for tests and the debug view.
+  const std::vector<float>& history_length() const { return history_length_; }
+
+ private:
+  DenoiseSettings settings_;
+  ParamSet params_;
+  bool keep_raw_ = false;
+  std::vector<float> history_length_;
+  // The implementation's buffers follow (history colour and moments per channel, previous
+  // depth, normal and object id, ping-pong filter buffers, raw copies).
+};
+
+}  // namespace bounce
