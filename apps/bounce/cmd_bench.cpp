@@ -48,11 +48,14 @@ TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
   t.width = settings.width;
   t.height = settings.height;
   const TechniqueFactory make = [&o] { return make_configured_technique(o.frame); };
+  const DenoiseSettings denoise = o.frame.denoise_settings();
   if (o.flicker > 0) {
     t.flicker_frames = o.flicker;
     t.flicker_warmup = o.warmup;
-    t.flicker_at_rest = measure_flicker(scene, make, settings, o.warmup, o.flicker, true).flicker;
-    const FlickerResult off = measure_flicker(scene, make, settings, o.warmup, o.flicker, false);
+    t.flicker_at_rest =
+        measure_flicker(scene, make, settings, o.warmup, o.flicker, true, denoise).flicker;
+    const FlickerResult off =
+        measure_flicker(scene, make, settings, o.warmup, o.flicker, false, denoise);
     t.flicker_accumulation_off = off.flicker;
     fmt::print(
         "flicker ({}x{}, {} frames after {} warm-up): {:.4f} at rest, {:.4f} with accumulation "
@@ -62,7 +65,7 @@ TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
   if (o.settle) {
     t.settle = true;
     t.settle_options = o.settle_options;
-    t.settle_result = measure_settle(scene, make, settings, o.settle_options);
+    t.settle_result = measure_settle(scene, make, settings, o.settle_options, denoise);
     const SettleResult& r = t.settle_result;
     const SettleOptions& so = o.settle_options;
     const std::string where =
@@ -92,6 +95,7 @@ void run_bench(BenchOptions o) {
     fail("{}: --animate: the scene has no animation", scene.source);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
+  configure_pipeline(o.frame, renderer);
   FrameSettings settings = o.frame.settings();
   settings.accumulate = o.accumulate;
   int frame_number = 0;

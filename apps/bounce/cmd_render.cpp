@@ -35,6 +35,7 @@ void run_render(const RenderOptions& o) {
   FrameOptions frame_options = o.frame;
   frame_options.still = true;  // a still affords more work per pass than a real-time frame
   Renderer renderer(scene, *tracer, make_configured_technique(frame_options));
+  configure_pipeline(frame_options, renderer);
   FrameSettings settings = o.frame.settings();
   // The passes are frames at rest: the pipeline averages them (techniques that accumulate
   // themselves, like tiled's shrinking-radius passes, are not averaged again).
@@ -64,6 +65,14 @@ void run_render(const RenderOptions& o) {
   for (const Param& p : renderer.technique().params().all())
     params += fmt::format("{}{}={}", params.empty() ? "" : " ", p.name, p.to_string());
   if (!params.empty()) fmt::print("parameters: {}\n", params);
+  if (settings.denoise) {
+    std::string denoiser;
+    for (const Param& p : renderer.denoiser().params().all())
+      denoiser += fmt::format("{}{}={}", denoiser.empty() ? "" : " ", p.name, p.to_string());
+    fmt::print("denoiser: {}\n", denoiser);
+  } else {
+    fmt::print("denoiser: off\n");
+  }
   print_stage_table(stats, false);
   fmt::print("rays: {} primary, {} shadow\n", primary, shadow);
 

@@ -38,7 +38,38 @@ FrameSettings FrameOptions::settings() const {
   s.light_samples = light_samples;
   s.exposure_ev = exposure_ev;
   s.seed = seed;
+  s.denoise = denoise;
   return s;
+}
+
+namespace {
+// The name in "name=value".
+std::string assigned_name(const std::string& assignment) {
+  return assignment.substr(0, assignment.find('='));
+}
+// Whether a --param assignment is the denoiser's: a name it has and the technique has not.
+bool is_denoiser_param(const std::string& assignment, const ParamSet& technique) {
+  static const Denoiser defaults;
+  const std::string name = assigned_name(assignment);
+  return defaults.params().find(name) != nullptr && technique.find(name) == nullptr;
+}
+}  // namespace
+
+DenoiseSettings FrameOptions::denoise_settings() const {
+  const auto owner = make_technique(technique);
+  Denoiser denoiser;
+  try {
+    for (const auto& assignment : params)
+      if (is_denoiser_param(assignment, owner->params()))
+        denoiser.params().set_assignment(assignment);
+  } catch (const Error& e) {
+    fail("denoiser: {}", e.what());
+  }
+  return denoiser.settings();
+}
+
+void configure_pipeline(const FrameOptions& options, Renderer& renderer) {
+  renderer.denoiser().settings() = options.denoise_settings();
 }
 
 void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) {
@@ -86,7 +117,9 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
     command.add_option("--" + flag, o.technique_options[flag],
                        fmt::format("{} (technique {})", help[flag], techniques));
   command.add_option("-p,--param", o.params,
-                     "Technique parameter NAME=VALUE (repeatable; listed below)");
+                     "Technique or denoiser parameter NAME=VALUE (repeatable; listed below)");
+  command.add_flag("!--no-denoise", o.denoise,
+                   "Show the raw pipeline: no temporal reuse or denoising");
   command.footer(technique_parameters_help());
 }
 
@@ -112,6 +145,10 @@ std::string technique_parameters_help() {
       text += fmt::format("  {}: {} = {} [{}, {}]  {}\n", name, p.name, p.to_string(), p.min, p.max,
                           p.help);
   }
+  text += "Denoiser parameters (--param NAME=VALUE; every technique):\n";
+  const Denoiser denoiser;
+  for (const auto& p : denoiser.params().all())
+    text += fmt::format("  {} = {} [{}, {}]  {}\n", p.name, p.to_string(), p.min, p.max, p.help);
   return text;
 }
 
@@ -146,7 +183,8 @@ void apply_parameters(const FrameOptions& o, Technique& technique) {
     }
     it->apply(params, text);
   }
-  for (const auto& assignment : o.params) params.set_assignment(assignment);
+  for (const auto& assignment : o.params)
+    if (!is_denoiser_param(assignment, params)) params.set_assignment(assignment);
 }
 }  // namespace
 

@@ -26,7 +26,9 @@ constexpr Verb kScriptVerbs[] = {
     {"camera", 6, 6, "camera X Y Z TX TY TZ  place the camera at X Y Z looking at TX TY TZ"},
     {"flashlight", 1, 1, "flashlight on|off|toggle"},
     {"technique", 1, 1, "technique NAME         switch the indirect-light technique"},
-    {"param", 2, 2, "param NAME VALUE       set a parameter of the current technique"},
+    {"param", 2, 2, "param NAME VALUE       set a parameter of the technique or the denoiser"},
+    {"denoise", 1, 1, "denoise on|off         temporal reuse and denoising"},
+    {"show", 1, 1, "show VIEW              denoised, raw, history, motion or variance"},
     {"light", 5, 5, "light I position|color X Y Z   move or recolour light I (scene.lights)"},
     {"object", 4, 4, "object I X Y Z         move mesh I by (X, Y, Z) metres"},
     {"exposure", 1, 1, "exposure EV"},
@@ -92,11 +94,29 @@ std::vector<ScriptAction> load_script(const std::string& path) {
       fail("{}: '{}' takes {} argument(s), found {}: {}", a.where(), a.verb, v->min_args, n,
            v->synopsis);
     if (a.verb == "flashlight" && a.args[0] != "toggle") a.on_off(0);
+    if (a.verb == "denoise") a.on_off(0);
+    if (a.verb == "show") parse_denoise_view(a.args[0], a.where());
     if (a.verb == "light" && a.args[1] != "position" && a.args[1] != "color")
       fail("{}: light: expected 'position' or 'color', found '{}'", a.where(), a.args[1]);
     actions.push_back(std::move(a));
   }
   return actions;
+}
+
+const std::vector<std::pair<DenoiseView, std::string>>& denoise_view_names() {
+  static const std::vector<std::pair<DenoiseView, std::string>> names = {
+      {DenoiseView::kDenoised, "denoised"},
+      {DenoiseView::kRaw, "raw"},
+      {DenoiseView::kHistory, "history"},
+      {DenoiseView::kMotion, "motion"},
+      {DenoiseView::kVariance, "variance"}};
+  return names;
+}
+
+DenoiseView parse_denoise_view(const std::string& name, const std::string& where) {
+  for (const auto& [view, view_name] : denoise_view_names())
+    if (name == view_name) return view;
+  fail("{}: show: '{}' is not a view (denoised, raw, history, motion or variance)", where, name);
 }
 
 std::string script_help() {

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "bounce/render/denoiser.h"
 
 namespace bounce::app {
 
@@ -25,6 +28,10 @@ struct ScriptAction {
 // Reads and checks a script: unknown verbs and wrong argument counts are errors naming the file
 // and line.
 std::vector<ScriptAction> load_script(const std::string& path);
+// The denoiser's debug views by name ("denoised", "raw", ...), for scripts and the panel.
+const std::vector<std::pair<DenoiseView, std::string>>& denoise_view_names();
+// The view a name stands for; fails naming `where` for an unknown one.
+DenoiseView parse_denoise_view(const std::string& name, const std::string& where);
 // The verbs with their argument synopsis, for help text.
 std::string script_help();
 

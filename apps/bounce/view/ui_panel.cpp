@@ -14,18 +14,11 @@ namespace bounce::app {
 
 namespace {
 
-// The technique's parameters, each as the widget its kind calls for. Widgets write the values
-// in place; the Renderer compares the parameters each frame and reports a change to the technique
-// (and to the resolution scaler, as motion).
-void technique_section(ViewSession& session) {
-  const std::vector<std::string> names = technique_names();
-  const std::string current = session.technique_name();
-  if (ImGui::BeginCombo("technique", current.c_str())) {
-    for (const auto& name : names)
-      if (ImGui::Selectable(name.c_str(), name == current)) session.set_technique(name);
-    ImGui::EndCombo();
-  }
-  for (const Param& p : session.technique().params().all()) {
+// Parameters, each as the widget its kind calls for. Widgets write the values in place; the
+// Renderer compares the technique's parameters each frame and reports a change to the technique
+// (and to the resolution scaler, as motion); the denoiser's apply from the next frame.
+void param_widgets(const ParamSet& params) {
+  for (const Param& p : params.all()) {
     switch (p.kind) {
       case Param::Kind::kBool:
         ImGui::Checkbox(p.name.c_str(), static_cast<bool*>(p.value));
@@ -51,6 +44,31 @@ void technique_section(ViewSession& session) {
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.help.c_str());
   }
+}
+
+void technique_section(ViewSession& session) {
+  const std::vector<std::string> names = technique_names();
+  const std::string current = session.technique_name();
+  if (ImGui::BeginCombo("technique", current.c_str())) {
+    for (const auto& name : names)
+      if (ImGui::Selectable(name.c_str(), name == current)) session.set_technique(name);
+    ImGui::EndCombo();
+  }
+  param_widgets(session.technique().params());
+}
+
+// Temporal reuse and denoising: on or off, what to show, and the filter's parameters.
+void denoiser_section(ViewSession& session) {
+  ImGui::Checkbox("denoise", &session.denoise());
+  std::string shown;
+  for (const auto& [view, name] : denoise_view_names())
+    if (view == session.view()) shown = name;
+  if (ImGui::BeginCombo("show (N, V)", shown.c_str())) {
+    for (const auto& [view, name] : denoise_view_names())
+      if (ImGui::Selectable(name.c_str(), view == session.view())) session.view() = view;
+    ImGui::EndCombo();
+  }
+  if (session.denoise()) param_widgets(session.denoiser().params());
 }
 
 void timing_section(const ViewSession& session) {
@@ -157,6 +175,8 @@ void draw_panel(ViewSession& session, PanelState& state) {
       ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.what());
     }
   }
+  if (ImGui::CollapsingHeader("denoiser", ImGuiTreeNodeFlags_DefaultOpen))
+    denoiser_section(session);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("exposure", &session.exposure(), -8.0f, 8.0f, "%.1f EV");
     float target = float(session.scaler().settings().target_ms);

@@ -26,8 +26,10 @@ ViewSession::ViewSession(const ViewOptions& options)
   tracer_ = make_embree_tracer(scene_);
   renderer_ =
       std::make_unique<Renderer>(scene_, *tracer_, make_configured_technique(options.frame));
+  configure_pipeline(options.frame, *renderer_);
   technique_name_ = options.frame.technique;
   exposure_ = options.frame.exposure_ev;
+  denoise_ = options.frame.denoise;
   camera_ = FlyCamera(scene_.camera);
   playing_ = !scene_.animation.empty();
   time_ = options.frame.at;
@@ -45,7 +47,14 @@ void ViewSession::set_technique(const std::string& name) {
 
 void ViewSession::set_param(const std::string& name, const std::string& value) {
   try {
-    renderer_->technique().params().set(name, value);
+    // The technique's parameter, or else the denoiser's.
+    ParamSet& technique = renderer_->technique().params();
+    ParamSet& denoiser = renderer_->denoiser().params();
+    if (technique.find(name) == nullptr && denoiser.find(name) != nullptr) {
+      denoiser.set(name, value);
+      return;
+    }
+    technique.set(name, value);
   } catch (const Error& e) {
     fail("technique '{}': {}", technique_name_, e.what());
   }
@@ -122,11 +131,15 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
   FrameSettings settings = options_.frame.settings();
   settings.exposure_ev = exposure_;
   settings.accumulate = true;
+  settings.denoise = denoise_;
+  settings.view = view_;
   moving_ = renderer_->next_change(camera, settings, true).any();
   const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
   settings.width = std::max(1, int(std::lround(out_w * scale)));
   settings.height = std::max(1, int(std::lround(out_h * scale)));
-  settings.jitter = !moving_;  // at rest, jittered frames average into an antialiased image
+  // Jittered frames average into an antialiased image: at rest, and in motion too when the
+  // denoiser's history follows surfaces (temporal antialiasing).
+  settings.jitter = denoise_ || !moving_;
   frame_ = &renderer_->render(camera, settings);
 
   last_frame_ms_ = frame_->times.total_ms();
@@ -185,6 +198,10 @@ bool ViewSession::apply(const ScriptAction& a) {
       fail("{}: object {} does not exist (the scene has {} meshes)", a.where(), i,
            scene_.meshes.size());
     move_mesh(uint32_t(i), vector_arg(a, 1));
+  } else if (a.verb == "denoise") {
+    denoise_ = a.on_off(0);
+  } else if (a.verb == "show") {
+    view_ = parse_denoise_view(a.args[0], a.where());
   } else if (a.verb == "exposure") {
     exposure_ = a.number(0);
   } else if (a.verb == "play") {

@@ -57,6 +57,10 @@ class ViewSession {
   // Moves mesh `index` by `offset` (the panel's object list).
   void move_mesh(uint32_t index, vec3 offset);
   float& exposure() { return exposure_; }
+  // Temporal reuse and denoising, its parameters, and what the window shows (debug views).
+  bool& denoise() { return denoise_; }
+  Denoiser& denoiser() { return renderer_->denoiser(); }
+  DenoiseView& view() { return view_; }
   bool& playing() { return playing_; }
   bool& follow_path() { return follow_path_; }
   float time() const { return time_; }
@@ -88,6 +92,8 @@ class ViewSession {
   SceneChange pending_;
 
   float exposure_ = 0.0f;
+  bool denoise_ = true;
+  DenoiseView view_ = DenoiseView::kDenoised;
   bool playing_ = false;
   bool follow_path_ = false;
   float time_ = 0.0f;

@@ -108,6 +108,17 @@ void handle_input(GLFWwindow* window, ViewSession& session, PanelState& panel, b
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) show_ui = !show_ui;
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) session.playing() = !session.playing();
     if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) session.follow_path() = !session.follow_path();
+    // N: the raw frame against the denoised one; V: every view in turn.
+    if (ImGui::IsKeyPressed(GLFW_KEY_N, false))
+      session.view() =
+          session.view() == DenoiseView::kRaw ? DenoiseView::kDenoised : DenoiseView::kRaw;
+    if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) {
+      const auto& views = denoise_view_names();
+      size_t next = 0;
+      for (size_t k = 0; k < views.size(); ++k)
+        if (views[k].first == session.view()) next = (k + 1) % views.size();
+      session.view() = views[next].first;
+    }
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
   if (!io.WantCaptureMouse) {

@@ -30,13 +30,15 @@ bool has_movable_light(const Scene& scene) {
 }
 
 FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
-                              FrameSettings settings, int warmup, int frames, bool accumulate) {
+                              FrameSettings settings, int warmup, int frames, bool accumulate,
+                              const DenoiseSettings& denoise) {
   if (frames < 1) fail("flicker needs at least one frame (got {})", frames);
   FlickerResult result;
   std::unique_ptr<Technique> technique = make();
   settings.accumulate = accumulate;
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
+  renderer.denoiser().settings() = denoise;
   for (int k = 0; k < warmup; ++k) renderer.render(scene.camera, settings);
   FlickerAccumulator acc;
   for (int k = 0; k < frames; ++k) acc.add(renderer.render(scene.camera, settings).color);
@@ -47,7 +49,8 @@ FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
 }
 
 SettleResult measure_settle(const Scene& original, const TechniqueFactory& make,
-                            FrameSettings settings, const SettleOptions& o) {
+                            FrameSettings settings, const SettleOptions& o,
+                            const DenoiseSettings& denoise) {
   if (o.rest_frames < 0 || o.frames < 1 || o.target_frames < 1)
     fail("settle: frame counts must be positive (rest {}, measured {}, target {})", o.rest_frames,
          o.frames, o.target_frames);
@@ -69,6 +72,7 @@ SettleResult measure_settle(const Scene& original, const TechniqueFactory& make,
   settings.accumulate = true;
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
+  renderer.denoiser().settings() = denoise;
 
   Image before;
   for (int k = 0; k < o.rest_frames; ++k) {

@@ -37,8 +37,10 @@ struct FlickerResult {
   double mean_deviation = 0.0;  // the numerator
   double mean_value = 0.0;      // the denominator
 };
+// `denoise` configures the denoiser when settings.denoise is on.
 FlickerResult measure_flicker(const Scene& scene, const TechniqueFactory& make,
-                              FrameSettings settings, int warmup, int frames, bool accumulate);
+                              FrameSettings settings, int warmup, int frames, bool accumulate,
+                              const DenoiseSettings& denoise = {});
 
 // Settle time of indirect light after a light moves (temporal_metrics.h):
 //  1. rest_frames frames at rest (the technique's state converges on the old lighting);
@@ -69,6 +71,7 @@ struct SettleResult {
   vec3 offset{0.0f};
 };
 SettleResult measure_settle(const Scene& scene, const TechniqueFactory& make,
-                            FrameSettings settings, const SettleOptions& options = {});
+                            FrameSettings settings, const SettleOptions& options = {},
+                            const DenoiseSettings& denoise = {});
 
 }  // namespace bounce

@@ -1,8 +1,10 @@
-// nvcc check of the per-pixel kernels: the G-buffer (render/gbuffer_kernel.h), direct light with
+// nvcc check of the per-pixel kernels: the G-buffer (render/gbuffer_kernel.h) and its motion
+// (render/motion_kernel.h), direct light with
 // its shadow rays traced at once (render/direct_kernel.h), and the path tracer's pixel and camera
 // paths (techniques/path/path_tracer.h).
 #include "bounce/render/direct_kernel.h"
 #include "bounce/render/gbuffer_kernel.h"
+#include "bounce/render/motion_kernel.h"
 #include "bounce/scene/camera.h"
 #include "bounce/techniques/path/path_tracer.h"
 
@@ -14,6 +16,13 @@ __global__ void check_gbuffer(SceneView scene, TraceView trace, CameraRays camer
   if (x >= g.width || y >= g.height) return;
   const Ray ray{camera.origin, 0.0f, camera.direction(float(x) + 0.5f, float(y) + 0.5f)};
   gbuffer_pixel(scene, camera.forward, ray, trace.intersect(ray), g.index(x, y), g);
+}
+
+__global__ void check_motion(SceneView scene, CameraRays camera, CameraRays previous,
+                             GBufferView g) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= g.size()) return;
+  g.motion[i] = motion_pixel(scene, camera, previous, g, i);
 }
 
 __global__ void check_direct(SceneView scene, TraceView trace, ConstGBufferView g, vec3 eye,

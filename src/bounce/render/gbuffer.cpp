@@ -4,6 +4,7 @@
 
 #include "bounce/core/parallel.h"
 #include "bounce/render/gbuffer_kernel.h"
+#include "bounce/render/motion_kernel.h"
 #include "bounce/scene/scene_data.h"
 
 namespace bounce {
@@ -49,6 +50,15 @@ uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const Camer
         gbuffer_pixel(scene, camera.forward, rays[n], hits[n], view.index(x, y), view);
   });
   return uint64_t(g.width) * g.height;
+}
+
+void compute_motion(const SceneView& scene, const CameraRays& camera, const CameraRays& previous,
+                    GBuffer& g) {
+  const GBufferView view = g.view();
+  const ConstGBufferView read = view;
+  parallel_for(
+      g.size(), [&](size_t i) { view.motion[i] = motion_pixel(scene, camera, previous, read, i); },
+      4096);
 }
 
 uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,

@@ -78,5 +78,9 @@ uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const Camer
 // the scene into one first.
 uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g);
+// Fills the G-buffer's motion from the previous frame's camera and the previous pose of moved
+// meshes (motion_kernel.h); `scene` is this frame's.
+void compute_motion(const SceneView& scene, const CameraRays& camera, const CameraRays& previous,
+                    GBuffer& g);
 
 }  // namespace bounce

@@ -33,6 +33,7 @@ std::vector<std::string> Renderer::parameter_state(const FrameSettings& settings
   state.push_back(std::to_string(settings.light_samples));
   state.push_back(std::to_string(settings.seed));
   state.push_back(settings.accumulate ? "accumulate" : "per-frame");
+  state.push_back(settings.denoise ? "denoise" : "raw");
   return state;
 }
 
@@ -50,6 +51,18 @@ SceneChange Renderer::change_since_last(const Camera& camera, const FrameSetting
 SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& settings,
                                   bool ignore_size) const {
   return change_since_last(camera, settings, parameter_state(settings), ignore_size);
+}
+
+HistoryState Renderer::history_state(const SceneChange& change, const FrameSettings& settings,
+                                     bool resized) const {
+  // History survives what moves surfaces (reprojection follows them) but not what changes what
+  // the image means: a new technique, parameters or size, or the denoiser just switched on.
+  if (!settings.accumulate || change.everything || change.parameters || resized ||
+      !last_denoised_ || !(denoiser_.settings() == last_denoise_))
+    return HistoryState::kReset;
+  if (!change.any()) return HistoryState::kRest;
+  if (change.camera_only()) return HistoryState::kCameraMoved;
+  return HistoryState::kWorldChanged;
 }
 
 void Renderer::RunningAverage::add(Image& image, bool accumulate, bool rest) {
@@ -79,13 +92,20 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   f.times.clear();
   std::vector<std::string> parameters = parameter_state(settings);
   f.change = change_since_last(camera, settings, parameters, false);
+  const bool resized = settings.width != last_width_ || settings.height != last_height_;
+  const HistoryState history = history_state(f.change, settings, resized);
   pending_ = SceneChange{};
   last_camera_ = camera;
   last_width_ = settings.width;
   last_height_ = settings.height;
   last_parameters_ = std::move(parameters);
+  last_denoised_ = settings.denoise;
+  last_denoise_ = denoiser_.settings();
   const SceneChange& change = f.change;
   const bool rest = settings.accumulate && !change.any();
+  rest_frames_ = rest ? rest_frames_ + 1 : 1;
+  // The denoiser's temporal part takes over the averaging at rest.
+  const bool average = !(settings.denoise && denoiser_.settings().temporal);
   {
     ScopedStage stage(f.times, "scene");
     // Sphere lights are trace geometry: a light change updates the tracer too.
@@ -94,6 +114,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
       scene_data_.build(scene_);
     else if (change.geometry() || change.lights || change.materials)
       scene_data_.refresh(scene_, change.moved_meshes);
+    else
+      scene_data_.forget_motion();  // moved meshes of an earlier frame stand still now
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;
@@ -113,16 +135,21 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "gbuffer");
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
     f.primary_rays = build_gbuffer(scene_data_.view(), tracer_, rays, subpixel, f.gbuffer);
+    // Motion from the last frame's camera (none on the first frame or after a resize).
+    const bool first = frame_index_ == 0 || resized || change.everything;
+    const CameraRays& previous = first ? rays : last_rays_;
+    compute_motion(scene_data_.view(), rays, previous, f.gbuffer);
   }
+  last_rays_ = rays;
   {
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
     f.shadow_rays =
         compute_direct(scene_data_.view(), tracer_, f.gbuffer, rays.origin, direct, f.direct);
-    direct_average_.add(f.direct, settings.accumulate, rest);
+    if (average) direct_average_.add(f.direct, settings.accumulate, rest);
   }
-  f.frames_averaged = direct_average_.frames;
+  f.frames_averaged = rest_frames_;
   const bool indirect = technique_->has_indirect();
   if (indirect) {
     ScopedStage stage(f.times, "indirect");
@@ -130,10 +157,18 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     const FrameContext context{scene_, scene_data_.view(),  tracer_,      f.gbuffer, rays,
                                change, settings.accumulate, frame_index_, f.times,   f.technique};
     technique_->indirect(context, f.indirect);
-    if (technique_->indirect_history() == IndirectHistory::kPerFrame)
+    if (average && technique_->indirect_history() == IndirectHistory::kPerFrame)
       indirect_average_.add(f.indirect, settings.accumulate, rest);
   } else {
     f.indirect = Image();
+  }
+  if (settings.denoise) {
+    ScopedStage stage(f.times, "denoise");
+    denoiser_.keep_raw(settings.view == DenoiseView::kRaw);
+    const DenoiseFrame frame{f.gbuffer, history,
+                             technique_->indirect_history() == IndirectHistory::kAccumulated,
+                             f.times};
+    denoiser_.run(frame, f.direct, indirect ? &f.indirect : nullptr);
   }
   {
     ScopedStage stage(f.times, "composite");
@@ -146,6 +181,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
         },
         4096);
   }
+  if (settings.denoise && settings.view != DenoiseView::kDenoised)
+    denoiser_.debug_view(settings.view, f.color);
   {
     ScopedStage stage(f.times, "tonemap");
     tonemap_srgb8(f.color, settings.exposure_ev, f.ldr);

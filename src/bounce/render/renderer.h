@@ -1,5 +1,6 @@
-// The frame pipeline: scene update -> technique.prepare -> G-buffer (primary rays) -> direct light
-// (shadow rays) -> technique.indirect -> composite -> tone map. Every stage is timed under its
+// The frame pipeline: scene update -> technique.prepare -> G-buffer (primary rays, motion) ->
+// direct light (shadow rays) -> technique.indirect -> denoise (temporal reuse and filtering,
+// denoiser.h) -> composite -> tone map. Every stage is timed under its
 // own name. The Renderer owns the one notion of what changed since the last frame (SceneChange)
 // and, at rest with accumulation on, the averaging of frames into a converged image.
 #pragma once
@@ -11,6 +12,7 @@
 
 #include "bounce/core/image.h"
 #include "bounce/core/timer.h"
+#include "bounce/render/denoiser.h"
 #include "bounce/render/gbuffer.h"
 #include "bounce/render/technique.h"
 #include "bounce/scene/scene.h"
@@ -31,16 +33,21 @@ struct FrameSettings {
   // techniques (IndirectHistory::kAccumulated) by themselves. With jitter this also antialiases.
   // Off, every frame is what a moving camera would show.
   bool accumulate = false;
-  uint32_t seed = 0;  // decorrelates sample patterns between runs
+  // Temporal reuse and denoising (denoiser.h; its parameters are Renderer::denoiser().params()):
+  // with accumulation, history follows surfaces through camera and object motion and frames at
+  // rest converge; without, every frame is filtered on its own.
+  bool denoise = false;
+  DenoiseView view = DenoiseView::kDenoised;  // what `color` shows (debug views keep history)
+  uint32_t seed = 0;                          // decorrelates sample patterns between runs
 
   bool operator==(const FrameSettings&) const = default;
 };
 
 struct Frame {
   GBuffer gbuffer;
-  Image direct;              // direct light plus emitters seen directly (averaged at rest)
-  Image indirect;            // the technique's indirect radiance (averaged at rest)
-  Image color;               // linear composite
+  Image direct;    // direct light plus emitters seen directly (averaged at rest, or denoised)
+  Image indirect;  // the technique's indirect radiance (averaged at rest, or denoised)
+  Image color;     // linear composite
   std::vector<uint8_t> ldr;  // tone-mapped sRGB, 3 bytes per pixel
   int frames_averaged = 1;   // frames that went into this one at rest (1 after any change)
   SceneChange change;        // what changed since the previous frame
@@ -70,6 +77,9 @@ class Renderer {
   // Renders the next frame from `camera`; the returned frame stays valid until the next call.
   const Frame& render(const Camera& camera, const FrameSettings& settings);
   uint32_t frame_index() const { return frame_index_; }
+  // The temporal reuse and denoising stage (FrameSettings::denoise) and its parameters.
+  Denoiser& denoiser() { return denoiser_; }
+  const Denoiser& denoiser() const { return denoiser_; }
 
  private:
   // A frame's parameters as text: the technique's and the frame settings that change images.
@@ -77,6 +87,9 @@ class Renderer {
   // Pending scene edits plus what the camera, size and `parameters` (parameter_state) add.
   SceneChange change_since_last(const Camera& camera, const FrameSettings& settings,
                                 const std::vector<std::string>& parameters, bool ignore_size) const;
+  // How the denoiser's history relates to this frame (from the change and the settings).
+  HistoryState history_state(const SceneChange& change, const FrameSettings& settings,
+                             bool resized) const;
   // Averages `image` with the frames before it while at rest; restarts when `rest` is false.
   // Without accumulation nothing is kept.
   struct RunningAverage {
@@ -95,9 +108,14 @@ class Renderer {
   double pose_ms_ = 0.0;                      // animate() time since the last frame
   // What the last frame was rendered with, to tell what changed.
   Camera last_camera_{};
+  CameraRays last_rays_{};  // the last frame's camera for its size: motion vectors start there
   int last_width_ = 0, last_height_ = 0;
+  bool last_denoised_ = false;
+  DenoiseSettings last_denoise_;
+  int rest_frames_ = 0;  // frames since the last change (Frame::frames_averaged)
   std::vector<std::string> last_parameters_;
   RunningAverage direct_average_, indirect_average_;
+  Denoiser denoiser_;
 };
 
 }  // namespace bounce

@@ -24,6 +24,9 @@ struct MeshView {
   const uint32_t* materials = nullptr;  // per triangle, index into the scene's materials
   uint32_t vertex_count = 0;
   uint32_t triangle_count = 0;
+  // Where the vertices were before the last refresh moved them (the previous frame's pose), or
+  // null when the mesh did not move: what motion vectors of moving objects are made from.
+  const vec3* previous_positions = nullptr;
 
   BOUNCE_HD vec3 face_normal_area2(uint32_t t) const {
     const uvec3 i = triangles[t];

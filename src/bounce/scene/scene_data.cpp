@@ -31,6 +31,8 @@ void SceneData::build(const Scene& scene) {
     triangles += mesh.triangles.size();
   }
   positions_.resize(vertices);
+  previous_positions_.resize(vertices);
+  moved_.assign(mesh_count, 0);
   normals_.resize(normals);
   uvs_.resize(uvs);
   triangles_.resize(triangles);
@@ -66,8 +68,22 @@ void SceneData::refresh(const Scene& scene, std::span<const uint32_t> moved_mesh
     build(scene);
     return;
   }
-  for (uint32_t m : moved_meshes) copy_vertices(scene, m);
+  std::fill(moved_.begin(), moved_.end(), 0);
+  for (uint32_t m : moved_meshes) {
+    const MeshRange& r = ranges_[m];
+    std::copy_n(positions_.begin() + r.first_vertex, r.vertex_count,
+                previous_positions_.begin() + r.first_vertex);
+    moved_[m] = 1;
+    copy_vertices(scene, m);
+  }
   copy_small_arrays(scene);
+  point_meshes();
+}
+
+void SceneData::forget_motion() {
+  if (std::find(moved_.begin(), moved_.end(), 1) == moved_.end()) return;
+  std::fill(moved_.begin(), moved_.end(), 0);
+  point_meshes();
 }
 
 bool SceneData::same_layout(const Scene& scene) const {
@@ -129,7 +145,8 @@ void SceneData::point_meshes() {
                   triangles_.data() + r.first_triangle,
                   triangle_materials_.data() + r.first_triangle,
                   r.vertex_count,
-                  r.triangle_count};
+                  r.triangle_count,
+                  moved_[m] ? previous_positions_.data() + r.first_vertex : nullptr};
   }
 }
 

@@ -27,8 +27,11 @@ class SceneData {
   // Copies everything from the scene (reusing the arrays' memory).
   void build(const Scene& scene);
   // Catches up with moved meshes (positions and normals only), lights, materials, area lights
-  // and bounds; rebuilds instead when the scene's layout (counts) changed.
+  // and bounds; rebuilds instead when the scene's layout (counts) changed. The moved meshes keep
+  // their former positions as MeshView::previous_positions; the other meshes have none.
   void refresh(const Scene& scene, std::span<const uint32_t> moved_meshes);
+  // Forgets the previous positions: nothing moved since the last frame.
+  void forget_motion();
 
   // Valid until the next build, refresh or destruction.
   SceneView view() const;
@@ -49,6 +52,8 @@ class SceneData {
   std::vector<MeshRange> ranges_;
   std::vector<MeshView> meshes_;
   std::vector<vec3> positions_;
+  std::vector<vec3> previous_positions_;  // same layout; meaningful for meshes that moved
+  std::vector<uint8_t> moved_;            // per mesh: moved in the last refresh
   std::vector<vec3> normals_;
   std::vector<vec2> uvs_;
   std::vector<uvec3> triangles_;
