@@ -28,6 +28,9 @@ std::string scene_stem(const std::string& scene) {
 Scene load_scene_at(const std::string& spec, float at) {
   Scene scene = load_scene(spec);
   animate(scene, at);  // nothing to do for a still scene
+  // A posed scene is seen from its camera path's camera at that time, when it has a path, so
+  // that render, reference and sequence agree on the view at time t.
+  scene.camera = scene.animation.camera_at(scene.camera, at);
   return scene;
 }
 

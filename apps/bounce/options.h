@@ -35,7 +35,8 @@ struct FrameOptions {
 
 // Adds [SCENE] and the frame options to a command.
 void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
-// Loads a scene and, if it is animated, poses it at `at` seconds.
+// Loads a scene and, if it is animated, poses it at `at` seconds (its camera too, when it has a
+// camera path).
 Scene load_scene_at(const std::string& spec, float at);
 // A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
 std::string scene_stem(const std::string& scene);

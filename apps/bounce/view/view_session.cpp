@@ -115,11 +115,8 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
     renderer_->animate(scene_, time_);
     time_set_ = false;
   }
-  if (follow_path_ && !scene_.animation.camera_path.empty()) {
-    const float d = scene_.animation.duration();
-    const float t = scene_.animation.loop && d > 0.0f ? std::fmod(time_, d) : time_;
-    camera_ = FlyCamera(scene_.animation.camera_path.at(scene_.camera, t));
-  }
+  if (follow_path_ && !scene_.animation.camera_path.empty())
+    camera_ = FlyCamera(scene_.animation.camera_at(scene_.camera, time_));
   place_flashlight();
   const Camera camera = camera_.camera();
 

@@ -82,6 +82,12 @@ Camera CameraPath::at(const Camera& base, float t) const {
   return c;
 }
 
+Camera Animation::camera_at(const Camera& base, float t) const {
+  if (camera_path.empty()) return base;
+  const float d = duration();
+  return camera_path.at(base, loop && d > 0.0f ? std::fmod(std::max(t, 0.0f), d) : t);
+}
+
 float Animation::duration() const {
   float d = camera_path.end_time();
   for (const auto& t : tracks) d = std::max(d, t.end_time());

@@ -86,6 +86,9 @@ struct Animation {
 
   bool empty() const { return tracks.empty(); }
   float duration() const;  // the longest track, seconds
+  // The camera at time t: on the camera path (wrapping around when the animation loops), or
+  // `base` when there is no path.
+  Camera camera_at(const Camera& base, float t) const;
   // Shifts mesh and light indices and moves pivots by `m` when a scene is appended to another.
   void append(Animation&& other, uint32_t mesh_base, uint32_t light_base, const mat4& m);
 };
