@@ -41,6 +41,19 @@ FrameSettings FrameOptions::settings() const {
   return s;
 }
 
+FrameOptions realtime_frame_options() {
+  FrameOptions o;
+  o.light_samples = 1;
+  return o;
+}
+
+FrameSettings realtime_frame_settings(const FrameOptions& options, bool moving) {
+  FrameSettings s = options.settings();
+  s.accumulate = true;
+  s.jitter = !moving;
+  return s;
+}
+
 void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) {
   auto* scene = command.add_option(
       "scene", o.scene,
