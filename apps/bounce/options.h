@@ -57,5 +57,6 @@ void add_bench_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_sequence_command(CLI::App& app);
 
 }  // namespace bounce::app
