@@ -1,5 +1,6 @@
 // bounce sequence's frame pattern (-o) and frame range (--from, --to, --fps, --every), tested as
 // plain code: names against printf's, counts against exact frame arithmetic.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,7 +95,7 @@ TEST(FramePattern, RefusesWhatIsNotOneIntegerConversionInANameWithAnImageExtensi
   for (const auto& c : cases) {
     const std::string message = error_of([&] { FramePattern p(c.pattern); });
     EXPECT_TRUE(contains(message, c.problem)) << c.pattern << ": " << message;
-    EXPECT_TRUE(contains(message, "'" + std::string(c.pattern) + "'")) << message;
+    EXPECT_TRUE(contains(message, fmt::format("'{}'", c.pattern))) << message;
   }
 }
 
