@@ -14,6 +14,7 @@
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/reference.h"
 #include "options.h"
+#include "report.h"
 
 namespace bounce::app {
 
@@ -33,12 +34,6 @@ struct ReferenceOptions {
   float at = 0.0f;  // animation time
   std::string out;
 };
-
-std::string clock_text(double seconds) {
-  const long s = std::lround(std::max(0.0, seconds));
-  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
-  return fmt::format("{}:{:02}", s / 60, s % 60);
-}
 
 std::string default_output(const std::string& scene) {
   return "out/" + scene_stem(scene) + "-reference.exr";

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   bounce::app::add_reference_command(app);
   bounce::app::add_compare_command(app);
   bounce::app::add_view_command(app);
+  bounce::app::add_sequence_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

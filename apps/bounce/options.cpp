@@ -75,6 +75,21 @@ void configure_pipeline(const FrameOptions& options, Renderer& renderer) {
   renderer.denoiser().settings() = options.denoise_settings();
 }
 
+FrameOptions realtime_frame_options() {
+  FrameOptions o;
+  o.light_samples = 1;
+  return o;
+}
+
+FrameSettings realtime_frame_settings(const FrameOptions& options, bool moving) {
+  FrameSettings s = options.settings();
+  s.accumulate = true;
+  // Jittered frames average into an antialiased image: at rest, and in motion too when the
+  // denoiser's history follows surfaces (temporal antialiasing).
+  s.jitter = s.denoise || !moving;
+  return s;
+}
+
 void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) {
   auto* scene = command.add_option(
       "scene", o.scene,

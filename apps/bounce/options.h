@@ -33,6 +33,13 @@ struct FrameOptions {
   DenoiseSettings denoise_settings() const;
 };
 
+// Frame options of the real-time commands (view, bench, sequence): one area-light sample per
+// pixel per frame, since frames average at rest or are seen only for a moment in motion.
+FrameOptions realtime_frame_options();
+// One real-time frame as the viewer shows it: history and accumulation at rest on, sub-pixel
+// jitter only at rest, where jittered frames average into an antialiased image.
+FrameSettings realtime_frame_settings(const FrameOptions& options, bool moving);
+
 // Adds [SCENE] and the frame options to a command.
 void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_required);
 // Loads a scene and, if it is animated, poses it at `at` seconds (its camera too, when it has a
@@ -56,5 +63,6 @@ void add_bench_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_sequence_command(CLI::App& app);
 
 }  // namespace bounce::app

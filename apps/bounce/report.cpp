@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace bounce::app {
 
 void print_stage_table(const StageStatistics& stats, bool with_stddev) {
@@ -12,6 +15,12 @@ void print_stage_table(const StageStatistics& stats, bool with_stddev) {
     else
       fmt::print("{:<28} {:>10.3f}\n", row.name, row.mean_ms);
   }
+}
+
+std::string clock_text(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
+  return fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
 }  // namespace bounce::app

@@ -1,0 +1,210 @@
+// bounce sequence: an animation or camera path rendered as the viewer shows it, frame after frame
+// through one Renderer (all temporal state kept) at a fixed rate, the displayed frames written as
+// numbered images. This is how quality in motion is measured and walkthrough videos are made.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "bounce/core/error.h"
+#include "bounce/core/image_io.h"
+#include "bounce/core/parallel.h"
+#include "bounce/scene/load.h"
+#include "frame_pattern.h"
+#include "frame_range.h"
+#include "options.h"
+#include "report.h"
+
+namespace bounce::app {
+
+namespace {
+
+struct SequenceOptions {
+  FrameOptions frame = realtime_frame_options();
+  double fps = 30.0;
+  double from = 0.0, to = 0.0;  // seconds
+  bool from_given = false;      // else --at (or 0)
+  bool to_given = false;        // else the animation's duration
+  int every = 1;
+  std::string out;   // frame pattern; empty: default_pattern()
+  std::string json;  // --json: per-frame record
+};
+
+std::string default_pattern(const std::string& scene) {
+  std::string stem;
+  for (char c : scene_stem(scene)) stem += c == '%' ? std::string("%%") : std::string(1, c);
+  return "out/sequence/" + stem + "_%04d.png";
+}
+
+// Progress on stderr: rewritten in place on a terminal; otherwise a plain line at most once a
+// second, so logs stay short.
+class ProgressLine {
+ public:
+  ProgressLine() : terminal_(isatty(fileno(stderr)) != 0) {}
+  ~ProgressLine() {
+    if (dirty_) fmt::print(stderr, "\n");
+  }
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  void update(int64_t done, int64_t total, double t, double elapsed_s) {
+    const bool last = done == total;
+    if (!terminal_ && !last && elapsed_s - printed_s_ < 1.0) return;
+    if (!terminal_ && last && printed_s_ == 0.0) return;  // a short run needs no progress
+    printed_s_ = elapsed_s;
+    const double per_frame_s = elapsed_s / double(done);
+    const std::string text =
+        fmt::format("sequence: frame {}/{} (t {:.3f} s), {:.1f} ms per frame, elapsed {}, ETA {}",
+                    done, total, t, 1000.0 * per_frame_s, clock_text(elapsed_s),
+                    clock_text(per_frame_s * double(total - done)));
+    if (terminal_) {
+      fmt::print(stderr, "\r{:<80}", text);
+      std::fflush(stderr);
+      dirty_ = true;
+    } else {
+      fmt::print(stderr, "{}\n", text);
+    }
+  }
+
+ private:
+  bool terminal_;
+  bool dirty_ = false;
+  double printed_s_ = 0.0;
+};
+
+void create_directory(const FramePattern& pattern) {
+  if (pattern.directory().empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(pattern.directory(), ec);
+  if (ec || !std::filesystem::is_directory(pattern.directory()))
+    fail("-o '{}': cannot create the directory '{}': {}", pattern.pattern(), pattern.directory(),
+         ec ? ec.message() : "a file of that name is in the way");
+}
+
+void run_sequence(const SequenceOptions& o) {
+  const ThreadLimit limit(o.frame.threads);
+  // Everything that can be refused is checked before the first frame renders.
+  const FramePattern pattern(o.out.empty() ? default_pattern(o.frame.scene) : o.out);
+  const double from = o.from_given ? o.from : double(o.frame.at);
+  if (!std::isfinite(from) || from < 0.0)  // checked again in make_frame_range; the pose needs it
+    fail("--from must be a finite time of at least 0 s, got {}", from);
+  Scene scene = load_scene_at(o.frame.scene, float(from));
+  const bool animated = !scene.animation.empty() || !scene.animation.camera_path.empty();
+  double to = 0.0;
+  if (o.to_given) {
+    to = o.to;
+  } else {
+    if (!animated || scene.animation.duration() <= 0.0f)
+      fail("{}: the scene has no animation or camera path to take the length from: give --to",
+           scene.source);
+    to = scene.animation.duration();
+    if (to < from)
+      fail("--from {:g} s is past the end of the animation ({:g} s); give --to", from, to);
+  }
+  const FrameRange range = make_frame_range(from, to, o.fps, o.every);
+  create_directory(pattern);
+
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
+  configure_pipeline(o.frame, renderer);
+  StageStatistics stats;
+  nlohmann::json frames = nlohmann::json::array();
+  double frame_ms_sum = 0.0;
+  int64_t written = 0;
+  const Stopwatch wall;
+  {
+    ProgressLine progress;
+    for (int64_t k = 0; k < range.count; ++k) {
+      const double t = range.time(k);
+      if (!scene.animation.empty()) renderer.animate(scene, float(t));
+      const Camera camera = scene.animation.camera_at(scene.camera, float(t));
+      const bool moving =
+          renderer.next_change(camera, realtime_frame_settings(o.frame, true)).any();
+      const Frame& frame = renderer.render(camera, realtime_frame_settings(o.frame, moving));
+      stats.add(frame.times);
+      const double frame_ms = frame.times.total_ms();
+      frame_ms_sum += frame_ms;
+      nlohmann::json record = {{"index", k}, {"time", t}, {"ms", frame_ms}};
+      if (range.kept(k)) {
+        const std::string name = pattern.name(k);
+        save_image(name, frame.color, o.frame.exposure_ev);
+        record["file"] = name;
+        ++written;
+      }
+      if (!o.json.empty()) {
+        nlohmann::json stages = nlohmann::json::object();
+        for (const StageTime& s : frame.times.stages()) stages[s.name] = s.ms;
+        record["stages"] = std::move(stages);
+        frames.push_back(std::move(record));
+      }
+      progress.update(k + 1, range.count, t, wall.elapsed_ms() / 1000.0);
+    }
+  }
+  const double wall_ms = wall.elapsed_ms();
+  const double mean_ms = frame_ms_sum / double(range.count);
+
+  const FrameSettings settings = realtime_frame_settings(o.frame, true);
+  fmt::print("sequence {} technique {} {}x{}, {} light samples, t {:g} .. {:g} s at {:g} fps\n",
+             scene.source, renderer.technique().name(), settings.width, settings.height,
+             settings.light_samples, range.from, range.to, range.fps);
+  print_stage_table(stats, true);
+  fmt::print("{} frames rendered, {} written{}: {}\n", range.count, written,
+             range.every > 1 ? fmt::format(" (every {})", range.every) : "", pattern.pattern());
+  fmt::print("mean frame {:.2f} ms ({:.1f} fps); {:.2f} ms per frame with writing\n", mean_ms,
+             mean_ms > 0.0 ? 1000.0 / mean_ms : 0.0, wall_ms / double(range.count));
+  if (o.json.empty()) return;
+  nlohmann::json j = {{"scene", scene.source},
+                      {"technique", renderer.technique().name()},
+                      {"width", settings.width},
+                      {"height", settings.height},
+                      {"light_samples", settings.light_samples},
+                      {"from", range.from},
+                      {"to", range.to},
+                      {"fps", range.fps},
+                      {"every", range.every},
+                      {"pattern", pattern.pattern()},
+                      {"frames_rendered", range.count},
+                      {"frames_written", written},
+                      {"mean_frame_ms", mean_ms},
+                      {"frames", std::move(frames)}};
+  for (const Param& p : renderer.technique().params().all()) j["params"][p.name] = p.to_string();
+  const std::filesystem::path parent = std::filesystem::path(o.json).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  save_text_file(o.json, j.dump(2) + "\n");
+  fmt::print("wrote {}\n", o.json);
+}
+
+}  // namespace
+
+void add_sequence_command(CLI::App& app) {
+  auto o = std::make_shared<SequenceOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sequence",
+      "Render an animation or camera path as the viewer shows it (real-time frames with their "
+      "temporal state) at a fixed rate, and write the frames");
+  add_frame_options(*cmd, o->frame, true);
+  cmd->add_option("--fps", o->fps, "Frames per second of animation time")->capture_default_str();
+  cmd->add_option("--from", o->from, "Start time, s (default: --at, else 0)");
+  cmd->add_option("--to", o->to,
+                  "End time, s, included when a frame falls on it (default: the length of the "
+                  "scene's animation and camera path; required for a scene without)");
+  cmd->add_option("--every", o->every,
+                  "Write every Nth frame (k % N == 0); all frames are still rendered")
+      ->capture_default_str();
+  cmd->add_option("-o,--out", o->out,
+                  "Frame files: a pattern with one integer conversion for the frame number k "
+                  "(at time from + k/fps), ending in .png (tone-mapped), .exr or .pfm (linear); "
+                  "default out/sequence/SCENE_%04d.png");
+  cmd->add_option("--json", o->json, "Also write per-frame times and file names as JSON here");
+  cmd->callback([o, cmd] {
+    o->from_given = cmd->count("--from") > 0;
+    o->to_given = cmd->count("--to") > 0;
+    run_sequence(*o);
+  });
+}
+
+}  // namespace bounce::app
