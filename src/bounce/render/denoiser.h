@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bounce/core/image.h"
@@ -72,6 +73,10 @@ struct DenoiseFrame {
 class Denoiser {
  public:
   Denoiser();
+  ~Denoiser();
+  // params() points into settings(): neither copied nor moved.
+  Denoiser(const Denoiser&) = delete;
+  Denoiser& operator=(const Denoiser&) = delete;
   ParamSet& params() { return params_; }
   const ParamSet& params() const { return params_; }
   DenoiseSettings& settings() { return settings_; }
@@ -94,8 +99,10 @@ class Denoiser {
   ParamSet params_;
   bool keep_raw_ = false;
   std::vector<float> history_length_;
-  // The implementation's buffers follow (history colour and moments per channel, previous
-  // depth, normal and object id, ping-pong filter buffers, raw copies).
+  // History colour and moments per channel, previous depth, normal and object id, ping-pong
+  // filter planes, raw copies (denoiser.cpp).
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;
 };
 
 }  // namespace bounce
