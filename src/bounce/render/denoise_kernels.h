@@ -41,7 +41,6 @@ inline constexpr float kLuminanceEpsilon = 1e-6f;
 inline constexpr float kMinHistoryWeight = 0.01f;
 // Below this many frames in a pixel's estimate its variance is estimated spatially.
 inline constexpr float kShortHistory = 4.0f;
-inline constexpr int kSpatialVarianceRadius = 3;  // 7x7
 inline constexpr float kLog2e = 1.44269504f;
 
 template <typename T, bool kConst>
@@ -87,26 +86,27 @@ using SurfacePlanes = SurfacePlanesT<false>;
 using ConstSurfacePlanes = SurfacePlanesT<true>;
 
 // What a pixel keeps for the next frame: demodulated light accumulated over `length` earlier
-// frames plus this one, luminance moments, and, at rest, the running average of the
-// demodulation factor and the emission (jittered frames see several surfaces per pixel).
-template <bool kConst>
-struct HistoryT {
-  RgbPlanesT<kConst> direct, indirect;
-  Ptr<float, kConst> direct_m1 = nullptr;  // mean luminance
-  Ptr<float, kConst> direct_m2 = nullptr;  // mean squared luminance
-  Ptr<float, kConst> indirect_m1 = nullptr;
-  Ptr<float, kConst> indirect_m2 = nullptr;
-  RgbPlanesT<kConst> factor, emission;
-  Ptr<float, kConst> length = nullptr;  // earlier frames in the estimate (0: none)
+// frames plus this one, and its luminance moments, as three 4-vectors, so that blending four of
+// them (bilinear reprojection) is a few vector operations.
+struct HistoryTexel {
+  vec4 direct{0.0f};    // rgb, mean luminance
+  vec4 indirect{0.0f};  // rgb, mean luminance
+  vec4 extra{0.0f};     // mean squared luminance of direct and of indirect light, length, unused
 
-  template <bool kTo>
-  requires(kTo && !kConst) BOUNCE_HD operator HistoryT<kTo>() const {
-    return {direct,      indirect, direct_m1, direct_m2, indirect_m1,
-            indirect_m2, factor,   emission,  length};
+  BOUNCE_HD float length() const { return extra.z; }
+  BOUNCE_HD void add(float w, const HistoryTexel& t) {
+    direct += w * t.direct;
+    indirect += w * t.indirect;
+    extra += w * t.extra;
   }
 };
-using History = HistoryT<false>;
-using ConstHistory = HistoryT<true>;
+
+// The demodulation factor and the emission averaged over the frames at rest, so that jittered
+// frames, which see several surfaces in an edge pixel, converge to the average of what they saw.
+struct RestAverage {
+  vec3 factor;
+  vec3 emission;
+};
 
 BOUNCE_HD inline float luminance_of(float r, float g, float b) {
   return 0.2126f * r + 0.7152f * g + 0.0722f * b;
@@ -121,8 +121,8 @@ BOUNCE_HD inline vec3 demodulation_factor(vec3 albedo) {
           albedo.z > kAlbedoFloor ? albedo.z : 1.0f};
 }
 
-// 2^x for x <= 0, and exactly 0 below -126: the filter's weights. On the CPU a polynomial
-// (relative error ~1e-7) that vectorises, with one exponent per tap.
+// 2^x for x <= 0, and exactly 0 below -126: the filter's weights. On the CPU a cubic (relative
+// error 1e-4, plenty for a weight) that vectorises.
 BOUNCE_HD BOUNCE_DENOISE_INLINE float exp2_weight(float x) {
 #if BOUNCE_DEVICE_CODE
   return x < -126.0f ? 0.0f : exp2f(x < 0.0f ? x : 0.0f);
@@ -130,70 +130,21 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE float exp2_weight(float x) {
   const float c = x < -126.0f ? -126.0f : (x < 0.0f ? x : 0.0f);
   const float whole = std::floor(c);
   const float f = c - whole;
-  const float p = 0.99999989f +
-                  f * (0.69315475f +
-                       f * (0.24013971f + f * (0.05586624f + f * (0.00894283f + f * 0.00189646f))));
+  const float p = 0.99989297f + f * (0.69645728f + f * (0.22433866f + f * 0.07920405f));
   const float scale = std::bit_cast<float>(uint32_t(int32_t(whole) + 127) << 23);
-  // Selects between constants only: with trapping maths on, GCC would not hoist arithmetic
-  // back out of a branch, and the row loops would not vectorise.
+  // Selects between constants only, so no arithmetic is left in a branch.
   return p * scale * (x < -126.0f ? 0.0f : 1.0f);
 #endif
 }
 
-// log2(x) for x in (0, 1] (normal agreement), absolute error ~1e-5.
-BOUNCE_HD BOUNCE_DENOISE_INLINE float log2_unit(float x) {
-#if BOUNCE_DEVICE_CODE
-  return log2f(x);
-#else
-  const uint32_t bits = std::bit_cast<uint32_t>(x);
-  const float e = float(int32_t(bits >> 23) - 127);
-  const float m = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u) - 1.0f;
-  return e +
-         m * (1.44268480f +
-              m * (-0.72051970f +
-                   m * (0.46991988f + m * (-0.30511980f + m * (0.14841024f - m * 0.03538566f)))));
-#endif
-}
-
-// log2 of the normal edge-stopping weight max(0, n_p . n_q)^sigma_normal; very negative (a zero
-// weight) where the normals disagree or a pixel has no surface.
+// log2 of the normal edge-stopping weight max(0, cos)^sigma_normal, from the series
+// ln(cos) = -(t + t^2/2 + t^3/3 + ...) with t = 1 - cos: accurate (1e-3) wherever the weight is
+// not ~0, three multiply-adds instead of a logarithm; a zero weight where cos <= 0 (opposite
+// normals, or a pixel without a surface, whose normal is 0).
 BOUNCE_HD BOUNCE_DENOISE_INLINE float normal_log2_weight(float cos_pq, float sigma_normal) {
-  const float c = cos_pq > 1e-6f ? (cos_pq < 1.0f ? cos_pq : 1.0f) : 1e-6f;
-  return sigma_normal * log2_unit(c) + (cos_pq > 1e-6f ? 0.0f : -1e4f);
-}
-
-// ---- Demodulation ---------------------------------------------------------------------------
-
-struct DemodulatePass {
-  ConstGBufferView g;
-  const vec3* direct = nullptr;    // direct light with the emission the G-buffer saw
-  const vec3* indirect = nullptr;  // null without indirect light
-  RgbPlanes out_direct, out_indirect;
-  SurfacePlanes out_surface;
-  vec2* out_motion = nullptr;  // a copy of the G-buffer's motion, for the debug view
-};
-
-// Splits pixel i into demodulated planes and surface planes. Pixels without a surface (background,
-// a sphere light seen directly) keep their light as it is: no filter tap reaches them, and the
-// remodulation leaves their images untouched.
-BOUNCE_HD inline void demodulate_pixel(const DemodulatePass& p, size_t i) {
-  p.out_motion[i] = p.g.motion[i];
-  if (!p.g.hit(i)) {
-    p.out_surface.depth[i] = p.out_surface.nx[i] = p.out_surface.ny[i] = p.out_surface.nz[i] = 0.0f;
-    p.out_surface.object[i] = kNoPrimitive;
-    p.out_direct.set(i, p.direct[i]);
-    if (p.indirect) p.out_indirect.set(i, p.indirect[i]);
-    return;
-  }
-  const vec3 inv = 1.0f / demodulation_factor(p.g.albedo[i]);
-  p.out_direct.set(i, (p.direct[i] - p.g.emission[i]) * inv);
-  if (p.indirect) p.out_indirect.set(i, p.indirect[i] * inv);
-  const vec3 n = p.g.normal[i];
-  p.out_surface.depth[i] = p.g.depth[i];
-  p.out_surface.nx[i] = n.x;
-  p.out_surface.ny[i] = n.y;
-  p.out_surface.nz[i] = n.z;
-  p.out_surface.object[i] = p.g.mesh[i];
+  const float t = 1.0f - cos_pq;
+  return -(sigma_normal * kLog2e) * t * (1.0f + t * (0.5f + t * (1.0f / 3.0f))) +
+         (cos_pq > 0.0f ? 0.0f : -1e4f);
 }
 
 // ---- Temporal reprojection and accumulation --------------------------------------------------
@@ -202,6 +153,7 @@ struct TemporalSettings {
   bool history = false;    // last frame's history may be used (temporal on, no reset)
   bool reproject = false;  // through the motion with consistency tests; else the same pixel (rest)
   bool clip = false;       // clamp the history to this frame's neighbourhood (world changed)
+  bool rest_continues = false;  // at rest, and the last frame was too: RestAverage continues
   bool has_indirect = false;
   float cap_direct = 0.0f;    // history length cap for direct light (infinite at rest)
   float cap_indirect = 0.0f;  // and for indirect light
@@ -211,63 +163,53 @@ struct TemporalSettings {
 };
 
 struct TemporalPass {
-  ConstGBufferView g;                       // this frame's (albedo, emission, motion)
-  ConstRgbPlanes raw_direct, raw_indirect;  // this frame, demodulated
-  ConstSurfacePlanes surface, prev_surface;
-  ConstHistory prev;
-  History next;
+  ConstGBufferView g;              // this frame's
+  const vec3* direct = nullptr;    // direct light with the emission the G-buffer saw
+  const vec3* indirect = nullptr;  // null without indirect light
+  ConstSurfacePlanes prev_surface;
+  const HistoryTexel* prev = nullptr;
+  // Out: the next history, this frame's surfaces, the accumulated light (the filter's input),
+  // the luminance variance of its mean from the moments over the frames, the history length.
+  HistoryTexel* next = nullptr;
+  SurfacePlanes surface;
+  RgbPlanes light_direct, light_indirect;
+  float* var_direct = nullptr;
+  float* var_indirect = nullptr;
+  float* length = nullptr;
+  RestAverage* rest = nullptr;  // updated in place at rest
   int width = 0;
   int height = 0;
   TemporalSettings s;
 };
 
-// Last frame's history at one pixel, as a weighted sum of taps.
-struct HistorySample {
-  float weight = 0.0f;
-  vec3 direct{0.0f}, indirect{0.0f};
-  float direct_m1 = 0.0f, direct_m2 = 0.0f, indirect_m1 = 0.0f, indirect_m2 = 0.0f;
-  float length = 0.0f;
-
-  BOUNCE_HD void add(const ConstHistory& h, size_t q, float w, bool indirect_light) {
-    weight += w;
-    direct += w * h.direct.get(q);
-    direct_m1 += w * h.direct_m1[q];
-    direct_m2 += w * h.direct_m2[q];
-    if (indirect_light) {
-      indirect += w * h.indirect.get(q);
-      indirect_m1 += w * h.indirect_m1[q];
-      indirect_m2 += w * h.indirect_m2[q];
-    }
-    length += w * h.length[q];
-  }
-  BOUNCE_HD void normalize() {
-    const float inv = 1.0f / weight;
-    direct *= inv;
-    indirect *= inv;
-    direct_m1 *= inv;
-    direct_m2 *= inv;
-    indirect_m1 *= inv;
-    indirect_m2 *= inv;
-    length *= inv;
-  }
-};
+// This frame's light at pixel i (which has a surface), demodulated; emission set apart.
+BOUNCE_HD inline void demodulated(const TemporalPass& p, size_t i, vec3& direct, vec3& indirect) {
+  const vec3 inv = 1.0f / demodulation_factor(p.g.albedo[i]);
+  direct = (p.direct[i] - p.g.emission[i]) * inv;
+  indirect = p.indirect ? p.indirect[i] * inv : vec3(0.0f);
+}
 
 // Whether last frame's pixel q shows the surface this frame's pixel i shows (SVGF's tests).
 BOUNCE_HD inline bool consistent(const TemporalPass& p, size_t i, size_t q) {
-  if (p.prev_surface.object[q] != p.surface.object[i]) return false;
-  const float z = p.surface.depth[i];
+  if (p.prev_surface.object[q] != p.g.mesh[i]) return false;
+  const float z = p.g.depth[i];
   if (std::fabs(p.prev_surface.depth[q] - z) > p.s.depth_tolerance * z) return false;
-  return glm::dot(p.prev_surface.normal(q), p.surface.normal(i)) >= p.s.normal_tolerance;
+  return glm::dot(p.prev_surface.normal(q), p.g.normal[i]) >= p.s.normal_tolerance;
 }
 
-// Last frame's history for this frame's pixel (x, y), weight 0 where there is none.
-BOUNCE_HD inline HistorySample reproject(const TemporalPass& p, int x, int y, size_t i) {
-  HistorySample h;
+// Last frame's history for this frame's pixel (x, y): the normalised sum of the taps kept.
+struct Reprojected {
+  HistoryTexel h;
+  bool kept = false;
+};
+BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size_t i) {
+  Reprojected r;
   if (!p.s.reproject) {
     // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
     // frames may see another object at an edge, and that is the antialiasing).
-    if (p.prev_surface.hit(i)) h.add(p.prev, i, 1.0f, p.s.has_indirect);
-    return h;
+    r.kept = p.prev_surface.hit(i);
+    if (r.kept) r.h = p.prev[i];
+    return r;
   }
   // Bilinear taps around where the surface was: pixel centres are at integer + 0.5.
   const vec2 m = p.g.motion[i];
@@ -275,208 +217,221 @@ BOUNCE_HD inline HistorySample reproject(const TemporalPass& p, int x, int y, si
   const float fx0 = std::floor(px), fy0 = std::floor(py);
   const float fx = px - fx0, fy = py - fy0;
   const int x0 = int(fx0), y0 = int(fy0);
+  float weight = 0.0f;
   for (int k = 0; k < 4; ++k) {
     const int dx = k & 1, dy = k >> 1;
     const float w = (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
     const int qx = x0 + dx, qy = y0 + dy;
     if (w <= 0.0f || qx < 0 || qy < 0 || qx >= p.width || qy >= p.height) continue;
     const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
-    if (consistent(p, i, q)) h.add(p.prev, q, w, p.s.has_indirect);
+    if (!consistent(p, i, q)) continue;
+    weight += w;
+    r.h.add(w, p.prev[q]);
   }
-  return h;
+  r.kept = weight >= kMinHistoryWeight;
+  if (!r.kept) return Reprojected{};
+  const float inv = 1.0f / weight;
+  r.h.direct *= inv;
+  r.h.indirect *= inv;
+  r.h.extra *= inv;
+  return r;
 }
 
-// Mean and standard deviation per channel of this frame's demodulated light around (x, y),
-// over the 3x3 pixels with a surface.
+// Mean and standard deviation per channel of this frame's demodulated light around (x, y), over
+// the 3x3 pixels with a surface.
 struct ColorBox {
   vec3 mean{0.0f}, sigma{0.0f};
 };
-BOUNCE_HD inline ColorBox neighbourhood(const TemporalPass& p, ConstRgbPlanes light, int x, int y) {
-  vec3 s1(0.0f), s2(0.0f);
+struct ColorBoxes {
+  ColorBox direct, indirect;
+};
+BOUNCE_HD inline ColorBoxes neighbourhood(const TemporalPass& p, int x, int y) {
+  vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
   float n = 0.0f;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int qx = x + dx, qy = y + dy;
-      if (qx < 0 || qy < 0 || qx >= p.width || qy >= p.height) continue;
+  for (int qy = glm::max(y - 1, 0); qy <= glm::min(y + 1, p.height - 1); ++qy) {
+    for (int qx = glm::max(x - 1, 0); qx <= glm::min(x + 1, p.width - 1); ++qx) {
       const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
-      if (!p.surface.hit(q)) continue;
-      const vec3 c = light.get(q);
-      s1 += c;
-      s2 += c * c;
+      if (!p.g.hit(q)) continue;
+      vec3 d, ind;
+      demodulated(p, q, d, ind);
+      d1 += d;
+      d2 += d * d;
+      i1 += ind;
+      i2 += ind * ind;
       n += 1.0f;
     }
   }
-  ColorBox box;
-  box.mean = s1 / n;
-  box.sigma = glm::sqrt(glm::max(s2 / n - box.mean * box.mean, vec3(0.0f)));
-  return box;
+  auto box = [n](vec3 s1, vec3 s2) {
+    ColorBox b;
+    b.mean = s1 / n;
+    b.sigma = glm::sqrt(glm::max(s2 / n - b.mean * b.mean, vec3(0.0f)));
+    return b;
+  };
+  return {box(d1, d2), box(i1, i2)};
 }
 
-// Clamps a history colour into mean +- gamma sigma and moves its first luminance moment with it
-// (keeping the moments' variance).
-BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec3& color, float& m1,
-                                   float& m2) {
+// Clamps a history colour (rgb, mean luminance) into mean +- gamma sigma and moves its mean
+// luminance with it, keeping the moments' variance (m2 is the mean squared luminance).
+BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec4& color, float& m2) {
   const vec3 clipped =
-      glm::clamp(color, box.mean - gamma * box.sigma, box.mean + gamma * box.sigma);
+      glm::clamp(vec3(color), box.mean - gamma * box.sigma, box.mean + gamma * box.sigma);
   const float l = luminance_of(clipped);
-  m2 += l * l - m1 * m1;
-  m1 = l;
-  color = clipped;
+  m2 += l * l - color.w * color.w;
+  color = vec4(clipped, l);
 }
 
 // Blends this frame's demodulated light at (x, y) into the reprojected history and writes the
-// next history. alpha = 1 / (n + 1) with n the (capped) history length: a plain running average
-// while n is below the cap.
-BOUNCE_HD inline void temporal_pixel(const TemporalPass& p, int x, int y) {
+// next history and the filter's inputs. alpha = 1 / (n + 1) with n the (capped) history length:
+// a plain running average while n is below the cap. Returns whether the pixel's history is too
+// short for its own variance (the spatial estimate then stands in).
+BOUNCE_HD inline bool temporal_pixel(const TemporalPass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  const History& next = p.next;
-  const vec3 raw_d = p.raw_direct.get(i);
-  const vec3 raw_i = p.s.has_indirect ? p.raw_indirect.get(i) : vec3(0.0f);
-  if (!p.surface.hit(i)) {
-    next.direct.set(i, raw_d);
-    next.direct_m1[i] = next.direct_m2[i] = 0.0f;
-    if (p.s.has_indirect) {
-      next.indirect.set(i, raw_i);
-      next.indirect_m1[i] = next.indirect_m2[i] = 0.0f;
-    }
-    next.factor.set(i, vec3(1.0f));
-    next.emission.set(i, vec3(0.0f));
-    next.length[i] = 0.0f;
-    return;
+  if (!p.g.hit(i)) {
+    // No surface: the light passes through (the remodulation leaves it alone), no history.
+    p.next[i] = HistoryTexel{};
+    p.surface.depth[i] = p.surface.nx[i] = p.surface.ny[i] = p.surface.nz[i] = 0.0f;
+    p.surface.object[i] = kNoPrimitive;
+    p.light_direct.set(i, p.direct[i]);
+    if (p.indirect) p.light_indirect.set(i, p.indirect[i]);
+    p.var_direct[i] = p.var_indirect[i] = 0.0f;
+    p.length[i] = 0.0f;
+    return false;
   }
-  HistorySample h;
-  if (p.s.history) h = reproject(p, x, y, i);
-  const bool kept = h.weight >= kMinHistoryWeight;
-  if (kept) h.normalize();
-  if (kept && p.s.clip) {
-    clip_history(neighbourhood(p, p.raw_direct, x, y), p.s.clip_gamma, h.direct, h.direct_m1,
-                 h.direct_m2);
-    if (p.s.has_indirect)
-      clip_history(neighbourhood(p, p.raw_indirect, x, y), p.s.clip_gamma, h.indirect,
-                   h.indirect_m1, h.indirect_m2);
+  const vec3 normal = p.g.normal[i];
+  p.surface.depth[i] = p.g.depth[i];
+  p.surface.nx[i] = normal.x;
+  p.surface.ny[i] = normal.y;
+  p.surface.nz[i] = normal.z;
+  p.surface.object[i] = p.g.mesh[i];
+
+  vec3 raw_d, raw_i;
+  demodulated(p, i, raw_d, raw_i);
+  Reprojected r;
+  if (p.s.history) r = reproject(p, x, y, i);
+  HistoryTexel& h = r.h;
+  if (r.kept && p.s.clip) {
+    const ColorBoxes boxes = neighbourhood(p, x, y);
+    clip_history(boxes.direct, p.s.clip_gamma, h.direct, h.extra.x);
+    if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, h.indirect, h.extra.y);
   }
-  const float n = kept ? glm::min(h.length + 1.0f, p.s.cap_direct) : 0.0f;
+  const float n = r.kept ? glm::min(h.length() + 1.0f, p.s.cap_direct) : 0.0f;
   const float alpha = 1.0f / (n + 1.0f);
-  const float l_d = luminance_of(raw_d);
-  next.direct.set(i, h.direct + (raw_d - h.direct) * alpha);
-  next.direct_m1[i] = h.direct_m1 + (l_d - h.direct_m1) * alpha;
-  next.direct_m2[i] = h.direct_m2 + (l_d * l_d - h.direct_m2) * alpha;
-  if (p.s.has_indirect) {
-    const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
-    const float l_i = luminance_of(raw_i);
-    next.indirect.set(i, h.indirect + (raw_i - h.indirect) * alpha_i);
-    next.indirect_m1[i] = h.indirect_m1 + (l_i - h.indirect_m1) * alpha_i;
-    next.indirect_m2[i] = h.indirect_m2 + (l_i * l_i - h.indirect_m2) * alpha_i;
+  const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
+  // This frame as a texel, blended in: colour and mean luminance, mean squared luminance.
+  const float l_d = luminance_of(raw_d), l_i = luminance_of(raw_i);
+  HistoryTexel next;
+  next.direct = h.direct + (vec4(raw_d, l_d) - h.direct) * alpha;
+  next.indirect = h.indirect + (vec4(raw_i, l_i) - h.indirect) * alpha_i;
+  next.extra = vec4(h.extra.x + (l_d * l_d - h.extra.x) * alpha,
+                    h.extra.y + (l_i * l_i - h.extra.y) * alpha_i, n, 0.0f);
+  p.next[i] = next;
+  p.light_direct.set(i, vec3(next.direct));
+  if (p.indirect) p.light_indirect.set(i, vec3(next.indirect));
+  // The variance of the mean of the frames (the spatial estimate replaces it where n is small).
+  p.var_direct[i] = glm::max(next.extra.x - next.direct.w * next.direct.w, 0.0f) / (n + 1.0f);
+  p.var_indirect[i] = glm::max(next.extra.y - next.indirect.w * next.indirect.w, 0.0f) /
+                      (glm::min(n, p.s.cap_indirect) + 1.0f);
+  p.length[i] = n;
+  if (p.rest) {
+    // The rest average continues where this pixel's history does, else it starts here.
+    RestAverage& rest = p.rest[i];
+    const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];
+    if (r.kept && p.s.rest_continues) {
+      rest.factor += (factor - rest.factor) * alpha;
+      rest.emission += (emission - rest.emission) * alpha;
+    } else {
+      rest.factor = factor;
+      rest.emission = emission;
+    }
   }
-  // What the light is remodulated with: this frame's, or at rest the average of the frames.
-  const vec3 factor = demodulation_factor(p.g.albedo[i]);
-  const vec3 emission = p.g.emission[i];
-  if (kept && !p.s.reproject) {
-    const vec3 f0 = p.prev.factor.get(i), e0 = p.prev.emission.get(i);
-    next.factor.set(i, f0 + (factor - f0) * alpha);
-    next.emission.set(i, e0 + (emission - e0) * alpha);
-  } else {
-    next.factor.set(i, factor);
-    next.emission.set(i, emission);
-  }
-  next.length[i] = n;
+  return n + 1.0f < kShortHistory;
 }
 
-// ---- Variance -------------------------------------------------------------------------------
+// ---- Depth slope ------------------------------------------------------------------------------
+
+// |dz/dx| + |dz/dy| at pixel x of the row starting at `row`, each from the flatter side (so a
+// depth edge does not count); `up` and `down` are the neighbouring rows' starts (the row itself
+// outside the image). Sides without a surface (depth 0) or outside the image do not count.
+template <bool kCheckColumns>
+BOUNCE_HD BOUNCE_DENOISE_INLINE float depth_slope_pixel(const float* depth, int width, size_t row,
+                                                        size_t up, size_t down, int x) {
+  constexpr float kNone = 1e30f;
+  const size_t i = row + size_t(x);
+  const float z = depth[i];
+  auto side = [z](float q) { return q > 0.0f ? std::fabs(q - z) : kNone; };
+  float left = kNone, right = kNone;
+  if constexpr (kCheckColumns) {
+    if (x > 0) left = side(depth[i - 1]);
+    if (x + 1 < width) right = side(depth[i + 1]);
+  } else {
+    left = side(depth[i - 1]);
+    right = side(depth[i + 1]);
+  }
+  const float sx = glm::min(left, right),
+              sy = glm::min(side(depth[up + size_t(x)]), side(depth[down + size_t(x)]));
+  return z > 0.0f ? (sx < kNone ? sx : 0.0f) + (sy < kNone ? sy : 0.0f) : 0.0f;
+}
+
+// ---- Spatial variance ---------------------------------------------------------------------------
+// Where a pixel's history is short, its variance comes from its neighbourhood: the moments summed
+// over a 7x7 box of pixels with a surface (a separable sum: a row pass, then a column pass), only
+// around rows that hold such pixels. Unlike SVGF's 7x7 bilateral estimate it ignores geometry;
+// the a-trous weights still stop at geometric edges, and the box costs a few additions per pixel
+// whatever the number of short pixels (all of them after a reset).
+
+inline constexpr int kVarianceBox = 3;  // radius: 7x7
+
+struct BoxPass {
+  const HistoryTexel* history = nullptr;  // this frame's accumulation, with its moments
+  const float* depth = nullptr;           // > 0 where there is a surface
+  float* sums[5] = {};  // out: moments summed along rows (direct m1, m2, indirect m1, m2), count
+  int width = 0;
+};
+
+// Row sums at pixel x of the row starting at index `row`.
+BOUNCE_HD inline void box_row_pixel(const BoxPass& p, size_t row, int x) {
+  float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (int qx = glm::max(x - kVarianceBox, 0); qx <= glm::min(x + kVarianceBox, p.width - 1);
+       ++qx) {
+    const size_t q = row + size_t(qx);
+    if (!(p.depth[q] > 0.0f)) continue;
+    const HistoryTexel& t = p.history[q];
+    s[0] += t.direct.w;
+    s[1] += t.extra.x;
+    s[2] += t.indirect.w;
+    s[3] += t.extra.y;
+    s[4] += 1.0f;
+  }
+  for (int k = 0; k < 5; ++k) p.sums[k][row + size_t(x)] = s[k];
+}
 
 struct VariancePass {
-  ConstSurfacePlanes surface;
-  ConstHistory history;          // this frame's accumulation
-  float* depth_slope = nullptr;  // out: |dz/dx| + |dz/dy|, from the flatter side of each axis
-  float* var_direct = nullptr;   // out: luminance variance of the accumulated mean
+  const float* depth = nullptr;   // > 0 where there is a surface
+  const float* length = nullptr;  // history length
+  const float* sums[5] = {};      // BoxPass's output
+  float* var_direct = nullptr;    // in/out: luminance variance of the accumulated mean
   float* var_indirect = nullptr;
   int width = 0;
   int height = 0;
-  bool has_indirect = false;
   float cap_indirect = 0.0f;
-  float sigma_normal = 0.0f;
-  float sigma_depth = 0.0f;
 };
 
-// The smaller depth difference to the two neighbours along one axis that have a surface.
-BOUNCE_HD inline float axis_slope(const ConstSurfacePlanes& s, size_t i, float z, bool has_before,
-                                  size_t before, bool has_after, size_t after) {
-  float slope = 0.0f;
-  bool any = false;
-  if (has_before && s.hit(before)) {
-    slope = std::fabs(z - s.depth[before]);
-    any = true;
-  }
-  if (has_after && s.hit(after)) {
-    const float d = std::fabs(s.depth[after] - z);
-    slope = any ? glm::min(slope, d) : d;
-  }
-  return slope;
-}
-
-BOUNCE_HD inline float depth_slope_at(const ConstSurfacePlanes& s, int width, int height, int x,
-                                      int y) {
-  const size_t i = size_t(y) * size_t(width) + size_t(x);
-  const float z = s.depth[i];
-  const size_t w = size_t(width);
-  return axis_slope(s, i, z, x > 0, i - 1, x + 1 < width, i + 1) +
-         axis_slope(s, i, z, y > 0, i - w, y + 1 < height, i + w);
-}
-
-// Writes the depth slope and the variance of pixel (x, y)'s accumulated mean: the moments'
-// variance over the frames where the history is long enough, else a 7x7 bilateral estimate
-// (depth and normal weights) from the neighbours' moments; divided by the frames averaged.
-BOUNCE_HD inline void variance_pixel(const VariancePass& p, int x, int y) {
+// Where pixel (x, y)'s history is short, replaces its variance by the box estimate divided by the
+// frames averaged.
+BOUNCE_HD inline void spatial_variance_pixel(const VariancePass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  const ConstHistory& h = p.history;
-  if (!p.surface.hit(i)) {
-    p.depth_slope[i] = 0.0f;
-    p.var_direct[i] = 0.0f;
-    if (p.has_indirect) p.var_indirect[i] = 0.0f;
-    return;
+  const float frames = p.length[i] + 1.0f;
+  if (!(frames < kShortHistory) || !(p.depth[i] > 0.0f)) return;
+  float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (int qy = glm::max(y - kVarianceBox, 0); qy <= glm::min(y + kVarianceBox, p.height - 1);
+       ++qy) {
+    const size_t q = size_t(qy) * size_t(p.width) + size_t(x);
+    for (int c = 0; c < 5; ++c) s[c] += p.sums[c][q];
   }
-  const float slope = depth_slope_at(p.surface, p.width, p.height, x, y);
-  p.depth_slope[i] = slope;
-  const float frames = h.length[i] + 1.0f;
-  float m1_d = h.direct_m1[i], m2_d = h.direct_m2[i];
-  float m1_i = p.has_indirect ? h.indirect_m1[i] : 0.0f;
-  float m2_i = p.has_indirect ? h.indirect_m2[i] : 0.0f;
-  if (frames < kShortHistory) {
-    const float zp = p.surface.depth[i];
-    const vec3 np = p.surface.normal(i);
-    const float inv_phi =
-        kLog2e / (p.sigma_depth * (slope + kDepthSlopeFloor * zp) + kDepthEpsilon);
-    float sw = 1.0f;
-    constexpr int r = kSpatialVarianceRadius;
-    for (int dy = -r; dy <= r; ++dy) {
-      const int qy = y + dy;
-      if (qy < 0 || qy >= p.height) continue;
-      for (int dx = -r; dx <= r; ++dx) {
-        const int qx = x + dx;
-        if (qx < 0 || qx >= p.width || (dx == 0 && dy == 0)) continue;
-        const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
-        const float dz = std::fabs(p.surface.depth[q] - zp);
-        const float e = normal_log2_weight(glm::dot(np, p.surface.normal(q)), p.sigma_normal) -
-                        dz * inv_phi / std::sqrt(float(dx * dx + dy * dy));
-        const float w = exp2_weight(e);
-        sw += w;
-        m1_d += w * h.direct_m1[q];
-        m2_d += w * h.direct_m2[q];
-        if (p.has_indirect) {
-          m1_i += w * h.indirect_m1[q];
-          m2_i += w * h.indirect_m2[q];
-        }
-      }
-    }
-    m1_d /= sw;
-    m2_d /= sw;
-    m1_i /= sw;
-    m2_i /= sw;
-  }
+  const float inv = 1.0f / s[4];
+  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
   p.var_direct[i] = glm::max(m2_d - m1_d * m1_d, 0.0f) / frames;
-  if (p.has_indirect)
-    p.var_indirect[i] =
-        glm::max(m2_i - m1_i * m1_i, 0.0f) / (glm::min(frames, p.cap_indirect + 1.0f));
+  p.var_indirect[i] = glm::max(m2_i - m1_i * m1_i, 0.0f) / glm::min(frames, p.cap_indirect + 1.0f);
 }
 
 // ---- A-trous wavelet pass ---------------------------------------------------------------------
@@ -524,20 +479,22 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void unrolled(F&& f) {
 struct AtrousSum {
   float w = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f, v = 0.0f;
 
+  template <bool kVariance>
   BOUNCE_HD BOUNCE_DENOISE_INLINE void add(float weight, ConstRgbPlanes c, const float* var,
                                            size_t q) {
     w += weight;
     r += weight * c.r[q];
     g += weight * c.g[q];
     b += weight * c.b[q];
-    v += weight * weight * var[q];
+    if constexpr (kVariance) v += weight * weight * var[q];
   }
+  template <bool kVariance>
   BOUNCE_HD BOUNCE_DENOISE_INLINE void store(RgbPlanes c, float* var, size_t i) const {
     const float inv = 1.0f / w;
     c.r[i] = r * inv;
     c.g[i] = g * inv;
     c.b[i] = b * inv;
-    var[i] = v * inv * inv;
+    if constexpr (kVariance) var[i] = v * inv * inv;
   }
 };
 
@@ -578,8 +535,9 @@ BOUNCE_HD inline AtrousRows<kRadius> atrous_rows(const AtrousPass& p, int y) {
 // sigma_luminance times the standard deviation from the centre's variance, prefiltered over 3x3),
 // one exponential per light and tap. The variance is filtered along with the squared weights.
 // Columns outside the image are masked only when kCheckColumns (the CPU's interior loop leaves
-// it off, and is then branch-free: it vectorises).
-template <int kRadius, bool kIndirect, bool kCheckColumns>
+// it off, and is then branch-free: it vectorises). Without kVariance (the last pass) the
+// variance is not filtered.
+template <int kRadius, bool kIndirect, bool kCheckColumns, bool kVariance = true>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_pixel(const AtrousPass& p,
                                                   const AtrousRows<kRadius>& rows, int x) {
   const int w = p.width;
@@ -618,8 +576,8 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_pixel(const AtrousPass& p,
       kIndirect ? luminance_of(p.in_indirect.r[c], p.in_indirect.g[c], p.in_indirect.b[c]) : 0.0f;
   constexpr float kCentre = atrous_kernel<kRadius>(0) * atrous_kernel<kRadius>(0);
   AtrousSum sd, si;
-  sd.add(kCentre, p.in_direct, p.in_var_direct, c);
-  if constexpr (kIndirect) si.add(kCentre, p.in_indirect, p.in_var_indirect, c);
+  sd.add<kVariance>(kCentre, p.in_direct, p.in_var_direct, c);
+  if constexpr (kIndirect) si.add<kVariance>(kCentre, p.in_indirect, p.in_var_indirect, c);
 
   constexpr int kSide = 2 * kRadius + 1;
   unrolled<kSide * kSide>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
@@ -640,25 +598,25 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_pixel(const AtrousPass& p,
       const float geometry = normal_log2_weight(cos_pq, p.sigma_normal) -
                              std::fabs(p.surface.depth[q] - zp) * (inv_phi_z * inv_distance);
       const float l_d = luminance_of(p.in_direct.r[q], p.in_direct.g[q], p.in_direct.b[q]);
-      sd.add(kernel * exp2_weight(geometry - std::fabs(l_d - lp_d) * inv_phi_d), p.in_direct,
-             p.in_var_direct, q);
+      sd.add<kVariance>(kernel * exp2_weight(geometry - std::fabs(l_d - lp_d) * inv_phi_d),
+                        p.in_direct, p.in_var_direct, q);
       if constexpr (kIndirect) {
         const float l_i = luminance_of(p.in_indirect.r[q], p.in_indirect.g[q], p.in_indirect.b[q]);
-        si.add(kernel * exp2_weight(geometry - std::fabs(l_i - lp_i) * inv_phi_i), p.in_indirect,
-               p.in_var_indirect, q);
+        si.add<kVariance>(kernel * exp2_weight(geometry - std::fabs(l_i - lp_i) * inv_phi_i),
+                          p.in_indirect, p.in_var_indirect, q);
       }
     }
   });
-  sd.store(p.out_direct, p.out_var_direct, c);
-  if constexpr (kIndirect) si.store(p.out_indirect, p.out_var_indirect, c);
+  sd.store<kVariance>(p.out_direct, p.out_var_direct, c);
+  if constexpr (kIndirect) si.store<kVariance>(p.out_indirect, p.out_var_indirect, c);
 }
 
 // ---- Remodulation ---------------------------------------------------------------------------
 
 struct RemodulatePass {
-  ConstSurfacePlanes surface;
-  ConstHistory history;  // the factor and emission to remodulate with
-  ConstRgbPlanes direct, indirect;
+  ConstGBufferView g;
+  const RestAverage* rest = nullptr;  // at rest: remodulate with the averages, else this frame's
+  ConstRgbPlanes direct, indirect;    // filtered
   vec3* out_direct = nullptr;
   vec3* out_indirect = nullptr;  // null without indirect light
 };
@@ -666,9 +624,10 @@ struct RemodulatePass {
 // Multiplies the filtered light back by its albedo and adds the emission; pixels without a
 // surface keep what the techniques wrote.
 BOUNCE_HD inline void remodulate_pixel(const RemodulatePass& p, size_t i) {
-  if (!p.surface.hit(i)) return;
-  const vec3 f = p.history.factor.get(i);
-  p.out_direct[i] = p.direct.get(i) * f + p.history.emission.get(i);
+  if (!p.g.hit(i)) return;
+  const vec3 f = p.rest ? p.rest[i].factor : demodulation_factor(p.g.albedo[i]);
+  const vec3 e = p.rest ? p.rest[i].emission : p.g.emission[i];
+  p.out_direct[i] = p.direct.get(i) * f + e;
   if (p.out_indirect) p.out_indirect[i] = p.indirect.get(i) * f;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 
@@ -12,10 +13,10 @@
 
 namespace bounce {
 
-using denoise::ConstHistory;
 using denoise::ConstRgbPlanes;
 using denoise::ConstSurfacePlanes;
-using denoise::History;
+using denoise::HistoryTexel;
+using denoise::RestAverage;
 using denoise::RgbPlanes;
 using denoise::SurfacePlanes;
 
@@ -55,26 +56,6 @@ struct SurfaceBuffers {
   }
 };
 
-// A frame's history but its length (Denoiser::history_length_ and Buffers::prev_length).
-enum HistoryPlane {
-  kDirect = 0,    // rgb
-  kIndirect = 3,  // rgb
-  kDirectM1 = 6,
-  kDirectM2,
-  kIndirectM1,
-  kIndirectM2,
-  kFactor = 10,    // rgb
-  kEmission = 13,  // rgb
-  kHistoryPlanes = 16,
-};
-
-template <typename View, typename P>
-View history_view(P& planes, auto* length) {
-  return {planes.rgb(kDirect), planes.rgb(kIndirect), planes[kDirectM1],
-          planes[kDirectM2],   planes[kIndirectM1],   planes[kIndirectM2],
-          planes.rgb(kFactor), planes.rgb(kEmission), length};
-}
-
 // The a-trous planes: direct rgb, indirect rgb, their variances.
 enum FilterPlane { kFilterDirect = 0, kFilterIndirect = 3, kVarDirect = 6, kVarIndirect = 7 };
 
@@ -85,22 +66,42 @@ void for_rows(int height, const Body& body) {
       size_t(height), [&](size_t y) { body(int(y)); }, 2);
 }
 
-// One a-trous pass over the image: the interior of each row without column tests, which the
-// compiler vectorises (the pass reads one set of planes and writes another).
-template <int kRadius, bool kIndirect>
+// Runs a per-pixel body over row y: the columns within `border` of the image's sides with
+// column tests, the interior without, in a loop the compiler vectorises (a pass reads one set of
+// planes and writes another, so iterations are independent).
+template <typename Checked, typename Interior>
+BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checked,
+                                    const Interior& interior) {
+  const int x0 = std::min(border, width);
+  const int x1 = std::max(width - border, x0);
+  for (int x = 0; x < x0; ++x) checked(x);
+#pragma GCC ivdep
+  for (int x = x0; x < x1; ++x) interior(x);
+  for (int x = x1; x < width; ++x) checked(x);
+}
+
+template <int kRadius, bool kIndirect, bool kVariance>
 void atrous_pass(const denoise::AtrousPass& pass) {
   for_rows(pass.height, [&](int y) {
     const denoise::AtrousPass p = pass;
     const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(p, y);
-    const int border = std::min(kRadius * p.step, p.width);
-    const int x_end = std::max(p.width - kRadius * p.step, border);
-    for (int x = 0; x < border; ++x) denoise::atrous_pixel<kRadius, kIndirect, true>(p, rows, x);
-#pragma GCC ivdep
-    for (int x = border; x < x_end; ++x)
-      denoise::atrous_pixel<kRadius, kIndirect, false>(p, rows, x);
-    for (int x = x_end; x < p.width; ++x)
-      denoise::atrous_pixel<kRadius, kIndirect, true>(p, rows, x);
+    row_loop(
+        p.width, kRadius * p.step,
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(p, rows, x);
+        },
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          denoise::atrous_pixel<kRadius, kIndirect, false, kVariance>(p, rows, x);
+        });
   });
+}
+
+template <int kRadius, bool kIndirect>
+void atrous_pass(const denoise::AtrousPass& pass, bool variance) {
+  if (variance)
+    atrous_pass<kRadius, kIndirect, true>(pass);
+  else
+    atrous_pass<kRadius, kIndirect, false>(pass);
 }
 
 }  // namespace
@@ -110,32 +111,37 @@ struct Denoiser::Buffers {
   int height = 0;
   bool valid = false;         // a previous run left a history of this size
   bool had_indirect = false;  // and it had indirect light
-  Planes<6> raw;              // this frame demodulated: direct rgb, indirect rgb
+  bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
   SurfaceBuffers surface, prev_surface;
-  Planes<kHistoryPlanes> history, prev_history;
-  std::vector<float> prev_length;
+  std::vector<HistoryTexel> history, prev_history;
+  std::vector<RestAverage> rest;
+  Planes<6> light;  // accumulated demodulated light: direct rgb, indirect rgb
+  Planes<5> box;    // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
-  Planes<8> variance;                 // the variance pass's output: kVarDirect, kVarIndirect used
-  Planes<8> filter[2];                // a-trous ping-pong
-  const Planes<8>* result = nullptr;  // where the last run's filtered light is (null: history)
+  std::vector<uint8_t> row_short;  // per row: some pixel's history is short
+  std::vector<uint8_t> row_box;    // per row: its box sums are needed
+  Planes<8> variance;              // the variance estimate (kVarDirect, kVarIndirect)
+  Planes<8> filter[2];             // a-trous ping-pong
   std::vector<vec2> motion;
-  Image raw_direct, raw_indirect;
+  Image raw_direct, raw_indirect, denoised;  // kept for the debug views
 
   void resize(int w, int h) {
     width = w;
     height = h;
     const size_t n = size_t(w) * size_t(h);
-    raw.resize(n);
     surface.resize(n);
     prev_surface.resize(n);
-    history.resize(n);
-    prev_history.resize(n);
-    prev_length.assign(n, 0.0f);
+    history.assign(n, HistoryTexel{});
+    prev_history.assign(n, HistoryTexel{});
+    rest.assign(n, RestAverage{vec3(1.0f), vec3(0.0f)});
+    light.resize(n);
+    box.resize(n);
     depth_slope.assign(n, 0.0f);
+    row_short.assign(size_t(h), 0);
+    row_box.assign(size_t(h), 0);
     variance.resize(n);
     filter[0].resize(n);
     filter[1].resize(n);
-    motion.assign(n, vec2(0.0f));
     valid = false;
   }
 };
@@ -192,75 +198,104 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Last run's "next" is this run's "previous".
   std::swap(b.surface, b.prev_surface);
   std::swap(b.history, b.prev_history);
-  std::swap(history_length_, b.prev_length);
 
   const DenoiseSettings& s = settings_;
-  const bool rest = state == HistoryState::kRest;
+  const bool rest = state == HistoryState::kRest && s.temporal;
   const float cap_direct =
       rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
   const float cap_indirect = frame.indirect_accumulated
                                  ? std::min(cap_direct, float(std::max(s.accumulated_history, 1)))
                                  : cap_direct;
-  const History next = history_view<History>(b.history, history_length_.data());
-  const ConstHistory prev = history_view<ConstHistory>(std::as_const(b.prev_history),
-                                                       std::as_const(b.prev_length).data());
   {
     ScopedStage stage(frame.times, "denoise/temporal");
-    const denoise::DemodulatePass demodulate{
-        gbuffer.view(), direct.data(), indirect ? indirect->data() : nullptr,
-        b.raw.rgb(0),   b.raw.rgb(3),  b.surface.view(),
-        b.motion.data()};
-    parallel_for(
-        n, [&](size_t i) { denoise::demodulate_pixel(demodulate, i); }, 2048);
-
-    denoise::TemporalSettings ts;
+    denoise::TemporalPass temporal;
+    temporal.g = gbuffer.view();
+    temporal.direct = direct.data();
+    temporal.indirect = indirect ? indirect->data() : nullptr;
+    temporal.prev_surface = std::as_const(b.prev_surface).view();
+    temporal.prev = b.prev_history.data();
+    temporal.next = b.history.data();
+    temporal.surface = b.surface.view();
+    temporal.light_direct = b.light.rgb(0);
+    temporal.light_indirect = b.light.rgb(3);
+    temporal.var_direct = b.variance[kVarDirect];
+    temporal.var_indirect = b.variance[kVarIndirect];
+    temporal.length = history_length_.data();
+    // Rest averages start at a reset (the first frame of a still) and continue at rest.
+    const bool reset = state == HistoryState::kReset;
+    temporal.rest = rest || reset ? b.rest.data() : nullptr;
+    temporal.width = w;
+    temporal.height = h;
+    denoise::TemporalSettings& ts = temporal.s;
     ts.history = s.temporal && state != HistoryState::kReset;
     ts.reproject = state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
     ts.clip = state == HistoryState::kWorldChanged;
+    ts.rest_continues = rest && b.rest_valid;
     ts.has_indirect = has_indirect;
     ts.cap_direct = cap_direct;
     ts.cap_indirect = cap_indirect;
     ts.clip_gamma = s.clip_gamma;
     ts.depth_tolerance = s.depth_tolerance;
     ts.normal_tolerance = s.normal_tolerance;
-    const denoise::TemporalPass temporal{gbuffer.view(),
-                                         std::as_const(b.raw).rgb(0),
-                                         std::as_const(b.raw).rgb(3),
-                                         b.surface.view(),
-                                         std::as_const(b.prev_surface).view(),
-                                         prev,
-                                         next,
-                                         w,
-                                         h,
-                                         ts};
     for_rows(h, [&](int y) {
-      for (int x = 0; x < w; ++x) denoise::temporal_pixel(temporal, x, y);
+      bool any_short = false;
+      for (int x = 0; x < w; ++x) any_short |= denoise::temporal_pixel(temporal, x, y);
+      b.row_short[size_t(y)] = any_short;
     });
   }
+  b.rest_valid = rest || state == HistoryState::kReset;
 
-  const ConstHistory accumulated = next;
-  ConstRgbPlanes light_d = accumulated.direct, light_i = accumulated.indirect;
-  b.result = nullptr;
+  ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
+  ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   if (spatial) {
     ScopedStage stage(frame.times, "denoise/variance");
-    const denoise::VariancePass variance{b.surface.view(),
-                                         accumulated,
-                                         b.depth_slope.data(),
-                                         b.variance[kVarDirect],
-                                         b.variance[kVarIndirect],
-                                         w,
-                                         h,
-                                         has_indirect,
-                                         cap_indirect,
-                                         s.sigma_normal,
-                                         s.sigma_depth};
+    // The depth slope the a-trous depth weights are relative to.
+    const float* depth = b.surface.geometry[0];
+    float* slope = b.depth_slope.data();
     for_rows(h, [&](int y) {
-      for (int x = 0; x < w; ++x) denoise::variance_pixel(variance, x, y);
+      const size_t row = size_t(y) * size_t(w);
+      const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
+      row_loop(
+          w, 1,
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
+          },
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            slope[row + size_t(x)] = denoise::depth_slope_pixel<false>(depth, w, row, up, down, x);
+          });
     });
-  } else {
-    std::fill_n(b.variance[kVarDirect], n, 0.0f);
-    std::fill_n(b.variance[kVarIndirect], n, 0.0f);
+    // Box sums for rows within the box's radius of a row with a short history, then the spatial
+    // estimate on those rows.
+    for (int y = 0; y < h; ++y) {
+      bool needed = false;
+      for (int k = std::max(y - denoise::kVarianceBox, 0);
+           k <= std::min(y + denoise::kVarianceBox, h - 1); ++k)
+        needed |= b.row_short[size_t(k)] != 0;
+      b.row_box[size_t(y)] = needed;
+    }
+    denoise::BoxPass box;
+    box.history = b.history.data();
+    box.depth = depth;
+    for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
+    box.width = w;
+    for_rows(h, [&](int y) {
+      if (!b.row_box[size_t(y)]) return;
+      for (int x = 0; x < w; ++x) denoise::box_row_pixel(box, size_t(y) * size_t(w), x);
+    });
+    denoise::VariancePass variance;
+    variance.depth = depth;
+    variance.length = history_length_.data();
+    for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
+    variance.var_direct = b.variance[kVarDirect];
+    variance.var_indirect = b.variance[kVarIndirect];
+    variance.width = w;
+    variance.height = h;
+    variance.cap_indirect = cap_indirect;
+    for_rows(h, [&](int y) {
+      if (!b.row_short[size_t(y)]) return;
+      for (int x = 0; x < w; ++x) denoise::spatial_variance_pixel(variance, x, y);
+    });
   }
   {
     ScopedStage stage(frame.times, "denoise/atrous");
@@ -285,50 +320,59 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
                                        s.sigma_luminance,
                                        s.sigma_normal,
                                        s.sigma_depth};
+        // The last pass's variance would guide nothing.
+        const bool variance = k + 1 < s.atrous_iterations;
         if (has_indirect)
-          atrous_pass<1, true>(pass);
+          atrous_pass<1, true>(pass, variance);
         else
-          atrous_pass<1, false>(pass);
+          atrous_pass<1, false>(pass, variance);
         const Planes<8>& result = out;
         light_d = result.rgb(kFilterDirect);
         light_i = result.rgb(kFilterIndirect);
         var_d = result[kVarDirect];
         var_i = result[kVarIndirect];
-        b.result = &result;
       }
     }
-    const denoise::RemodulatePass remodulate{
-        b.surface.view(), accumulated,   light_d,
-        light_i,          direct.data(), indirect ? indirect->data() : nullptr};
+    const denoise::RemodulatePass remodulate{gbuffer.view(), rest ? b.rest.data() : nullptr,
+                                             light_d,        light_i,
+                                             direct.data(),  indirect ? indirect->data() : nullptr};
     parallel_for(
-        n, [&](size_t i) { denoise::remodulate_pixel(remodulate, i); }, 2048);
+        n, [&](size_t i) { denoise::remodulate_pixel(remodulate, i); }, 4096);
+  }
+  if (keep_raw_) {
+    b.denoised = direct;
+    if (indirect) b.denoised += *indirect;
+    b.motion = gbuffer.motion;
+  } else {
+    b.denoised = Image();
+    b.motion.clear();
   }
 }
 
 void Denoiser::debug_view(DenoiseView view, Image& out) const {
   const Buffers& b = *buffers_;
   const int w = b.width, h = b.height;
-  if (out.width() != w || out.height() != h) out = Image(w, h);
   const size_t n = size_t(w) * size_t(h);
-  const ConstHistory history = history_view<ConstHistory>(b.history, history_length_.data());
-  vec3* pixels = out.data();
   switch (view) {
-    case DenoiseView::kDenoised: {
-      const ConstRgbPlanes d = b.result ? b.result->rgb(kFilterDirect) : history.direct;
-      const ConstRgbPlanes ind = b.result ? b.result->rgb(kFilterIndirect) : history.indirect;
-      const bool has_indirect = b.had_indirect;
-      parallel_for(n, [&](size_t i) {
-        const vec3 f = history.factor.get(i);
-        pixels[i] =
-            d.get(i) * f + history.emission.get(i) + (has_indirect ? ind.get(i) * f : vec3(0.0f));
-      });
+    case DenoiseView::kMotion:
+      if (b.motion.size() != n)
+        fail("denoiser: the motion view needs keep_raw(true) before the run");
+      break;
+    case DenoiseView::kDenoised:
+    case DenoiseView::kRaw: {
+      const bool raw = view == DenoiseView::kRaw;
+      if ((raw ? b.raw_direct : b.denoised).empty())
+        fail("denoiser: the {} view needs keep_raw(true) before the run", raw ? "raw" : "denoised");
+      out = raw ? b.raw_direct : b.denoised;
+      if (raw && !b.raw_indirect.empty()) out += b.raw_indirect;
       return;
     }
-    case DenoiseView::kRaw:
-      if (b.raw_direct.empty()) fail("denoiser: the raw view needs keep_raw(true) before the run");
-      out = b.raw_direct;
-      if (!b.raw_indirect.empty()) out += b.raw_indirect;
-      return;
+    default:
+      break;
+  }
+  if (out.width() != w || out.height() != h) out = Image(w, h);
+  vec3* pixels = out.data();
+  switch (view) {
     case DenoiseView::kHistory: {
       const float inv_max = 1.0f / float(std::max(settings_.history_max, 1));
       parallel_for(
@@ -342,6 +386,7 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       });
       return;
     case DenoiseView::kVariance: {
+      // As a standard deviation, of direct and indirect light together.
       const float* var_d = b.variance[kVarDirect];
       const float* var_i = b.variance[kVarIndirect];
       const bool has_indirect = b.had_indirect;
@@ -350,6 +395,8 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       });
       return;
     }
+    default:
+      return;
   }
 }
 
