@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bounce/core/image.h"
@@ -72,6 +73,10 @@ struct DenoiseFrame {
 class Denoiser {
  public:
   Denoiser();
+  ~Denoiser();
+  // params() points into settings(): neither copied nor moved.
+  Denoiser(const Denoiser&) = delete;
+  Denoiser& operator=(const Denoiser&) = delete;
   ParamSet& params() { return params_; }
   const ParamSet& params() const { return params_; }
   DenoiseSettings& settings() { return settings_; }
@@ -82,8 +87,8 @@ class Denoiser {
   // size. Keeps what the next frame reprojects.
   void run(const DenoiseFrame& frame, Image& direct, Image* indirect);
 
-  // Writes a debug view of the last run into `out` (sized to match). kRaw needs keep_raw(true)
-  // before the run.
+  // Writes a debug view of the last run into `out` (sized to match). kRaw, kDenoised and kMotion
+  // need keep_raw(true) before the run (it keeps copies of the run's input, output and motion).
   void debug_view(DenoiseView view, Image& out) const;
   void keep_raw(bool keep) { keep_raw_ = keep; }
   // Per pixel history length of the last run (frames), for tests and the debug view.
@@ -94,8 +99,10 @@ class Denoiser {
   ParamSet params_;
   bool keep_raw_ = false;
   std::vector<float> history_length_;
-  // The implementation's buffers follow (history colour and moments per channel, previous
-  // depth, normal and object id, ping-pong filter buffers, raw copies).
+  // History colour and moments per channel, previous depth, normal and object id, ping-pong
+  // filter planes, raw copies (denoiser.cpp).
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;
 };
 
 }  // namespace bounce

@@ -1,0 +1,57 @@
+// nvcc check of the denoiser's per-pixel bodies (render/denoise_kernels.h): the temporal pass,
+// the depth slope, the spatial variance's box sums, both a-trous kernels (3x3 and 5x5, with and
+// without indirect light, with the column tests a GPU pixel needs) and remodulation.
+#include "bounce/render/denoise_kernels.h"
+
+namespace bounce {
+
+namespace {
+
+__device__ bool pixel_of(int width, int height, int& x, int& y) {
+  x = int(blockIdx.x * blockDim.x + threadIdx.x);
+  y = int(blockIdx.y * blockDim.y + threadIdx.y);
+  return x < width && y < height;
+}
+
+}  // namespace
+
+__global__ void check_temporal(denoise::TemporalPass pass, bool* short_history) {
+  int x, y;
+  if (pixel_of(pass.width, pass.height, x, y))
+    short_history[size_t(y) * size_t(pass.width) + size_t(x)] = denoise::temporal_pixel(pass, x, y);
+}
+
+__global__ void check_depth_slope(const float* depth, int width, int height, float* slope) {
+  int x, y;
+  if (!pixel_of(width, height, x, y)) return;
+  const size_t row = size_t(y) * size_t(width);
+  const size_t up = y > 0 ? row - size_t(width) : row;
+  const size_t down = y + 1 < height ? row + size_t(width) : row;
+  slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, width, row, up, down, x);
+}
+
+__global__ void check_variance(denoise::BoxPass box, denoise::VariancePass variance) {
+  int x, y;
+  if (!pixel_of(variance.width, variance.height, x, y)) return;
+  denoise::box_row_pixel(box, size_t(y) * size_t(box.width), x);
+  denoise::spatial_variance_pixel(variance, x, y);  // (a real launch splits the two passes)
+}
+
+template <int kRadius, bool kIndirect, bool kVariance>
+__global__ void check_atrous(denoise::AtrousPass pass) {
+  int x, y;
+  if (!pixel_of(pass.width, pass.height, x, y)) return;
+  const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(pass, y);
+  denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(pass, rows, x);
+}
+template __global__ void check_atrous<1, true, true>(denoise::AtrousPass);
+template __global__ void check_atrous<1, false, false>(denoise::AtrousPass);
+template __global__ void check_atrous<2, true, true>(denoise::AtrousPass);
+template __global__ void check_atrous<2, false, false>(denoise::AtrousPass);
+
+__global__ void check_remodulate(denoise::RemodulatePass pass) {
+  const size_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < pass.g.size()) denoise::remodulate_pixel(pass, i);
+}
+
+}  // namespace bounce

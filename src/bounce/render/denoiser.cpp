@@ -1,0 +1,403 @@
+#include "bounce/render/denoiser.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "bounce/core/error.h"
+#include "bounce/core/parallel.h"
+#include "bounce/render/denoise_kernels.h"
+
+namespace bounce {
+
+using denoise::ConstRgbPlanes;
+using denoise::ConstSurfacePlanes;
+using denoise::HistoryTexel;
+using denoise::RestAverage;
+using denoise::RgbPlanes;
+using denoise::SurfacePlanes;
+
+namespace {
+
+// Motion of this many pixels shows as 0 or 1 in the motion view.
+constexpr float kMotionViewRange = 8.0f;
+
+// Float planes of one image size.
+template <int kCount>
+struct Planes {
+  std::array<std::vector<float>, kCount> planes;
+  void resize(size_t n) {
+    for (auto& p : planes) p.assign(n, 0.0f);
+  }
+  float* operator[](int k) { return planes[size_t(k)].data(); }
+  const float* operator[](int k) const { return planes[size_t(k)].data(); }
+  RgbPlanes rgb(int first) { return {(*this)[first], (*this)[first + 1], (*this)[first + 2]}; }
+  ConstRgbPlanes rgb(int first) const {
+    return {(*this)[first], (*this)[first + 1], (*this)[first + 2]};
+  }
+};
+
+// A frame's surfaces: depth, normal and object id.
+struct SurfaceBuffers {
+  Planes<4> geometry;
+  std::vector<uint32_t> object;
+  void resize(size_t n) {
+    geometry.resize(n);
+    object.assign(n, kNoPrimitive);
+  }
+  SurfacePlanes view() {
+    return {geometry[0], geometry[1], geometry[2], geometry[3], object.data()};
+  }
+  ConstSurfacePlanes view() const {
+    return {geometry[0], geometry[1], geometry[2], geometry[3], object.data()};
+  }
+};
+
+// The a-trous planes: direct rgb, indirect rgb, their variances.
+enum FilterPlane { kFilterDirect = 0, kFilterIndirect = 3, kVarDirect = 6, kVarIndirect = 7 };
+
+// Runs body(y) for every row, rows spread over the cores.
+template <typename Body>
+void for_rows(int height, const Body& body) {
+  parallel_for(
+      size_t(height), [&](size_t y) { body(int(y)); }, 2);
+}
+
+// Runs a per-pixel body over row y: the columns within `border` of the image's sides with
+// column tests, the interior without, in a loop the compiler vectorises (a pass reads one set of
+// planes and writes another, so iterations are independent).
+template <typename Checked, typename Interior>
+BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checked,
+                                    const Interior& interior) {
+  const int x0 = std::min(border, width);
+  const int x1 = std::max(width - border, x0);
+  for (int x = 0; x < x0; ++x) checked(x);
+#pragma GCC ivdep
+  for (int x = x0; x < x1; ++x) interior(x);
+  for (int x = x1; x < width; ++x) checked(x);
+}
+
+template <int kRadius, bool kIndirect, bool kVariance>
+void atrous_pass(const denoise::AtrousPass& pass) {
+  for_rows(pass.height, [&](int y) {
+    const denoise::AtrousPass p = pass;
+    const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(p, y);
+    row_loop(
+        p.width, kRadius * p.step,
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(p, rows, x);
+        },
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          denoise::atrous_pixel<kRadius, kIndirect, false, kVariance>(p, rows, x);
+        });
+  });
+}
+
+template <int kRadius, bool kIndirect>
+void atrous_pass(const denoise::AtrousPass& pass, bool variance) {
+  if (variance)
+    atrous_pass<kRadius, kIndirect, true>(pass);
+  else
+    atrous_pass<kRadius, kIndirect, false>(pass);
+}
+
+}  // namespace
+
+struct Denoiser::Buffers {
+  int width = 0;
+  int height = 0;
+  bool valid = false;         // a previous run left a history of this size
+  bool had_indirect = false;  // and it had indirect light
+  bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
+  SurfaceBuffers surface, prev_surface;
+  std::vector<HistoryTexel> history, prev_history;
+  std::vector<RestAverage> rest;
+  Planes<6> light;  // accumulated demodulated light: direct rgb, indirect rgb
+  Planes<5> box;    // its moments summed along rows, for the spatial variance
+  std::vector<float> depth_slope;
+  std::vector<uint8_t> row_short;  // per row: some pixel's history is short
+  std::vector<uint8_t> row_box;    // per row: its box sums are needed
+  Planes<8> variance;              // the variance estimate (kVarDirect, kVarIndirect)
+  Planes<8> filter[2];             // a-trous ping-pong
+  std::vector<vec2> motion;
+  Image raw_direct, raw_indirect, denoised;  // kept for the debug views
+
+  void resize(int w, int h) {
+    width = w;
+    height = h;
+    const size_t n = size_t(w) * size_t(h);
+    surface.resize(n);
+    prev_surface.resize(n);
+    history.assign(n, HistoryTexel{});
+    prev_history.assign(n, HistoryTexel{});
+    rest.assign(n, RestAverage{vec3(1.0f), vec3(0.0f)});
+    light.resize(n);
+    box.resize(n);
+    depth_slope.assign(n, 0.0f);
+    row_short.assign(size_t(h), 0);
+    row_box.assign(size_t(h), 0);
+    variance.resize(n);
+    filter[0].resize(n);
+    filter[1].resize(n);
+    valid = false;
+  }
+};
+
+Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
+  DenoiseSettings& s = settings_;
+  params_.add_bool("temporal", &s.temporal, "accumulate light over frames through reprojection");
+  params_.add_bool("spatial", &s.spatial, "edge-avoiding a-trous filter of the light");
+  params_.add_int("atrous_iterations", &s.atrous_iterations, 0, 8,
+                  "a-trous passes, with steps 1, 2, 4, ... pixels");
+  params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
+                    "luminance edge-stopping, in standard deviations of the estimate");
+  params_.add_float("sigma_normal", &s.sigma_normal, 1.0, 1024.0,
+                    "normal edge-stopping exponent on the cosine between normals");
+  params_.add_float("sigma_depth", &s.sigma_depth, 0.01, 1000.0,
+                    "depth edge-stopping, relative to the local depth slope");
+  params_.add_int("history_max", &s.history_max, 1, 4096,
+                  "frames of history a pixel keeps while anything moves");
+  params_.add_int("accumulated_history", &s.accumulated_history, 1, 4096,
+                  "frames of history for indirect light the technique accumulates itself");
+  params_.add_float("clip_gamma", &s.clip_gamma, 0.0, 100.0,
+                    "history clamp half-width in standard deviations when the world changed");
+  params_.add_float("depth_tolerance", &s.depth_tolerance, 0.0, 10.0,
+                    "reprojection: largest relative depth difference of the same surface");
+  params_.add_float("normal_tolerance", &s.normal_tolerance, -1.0, 1.0,
+                    "reprojection: smallest cosine between normals of the same surface");
+}
+
+Denoiser::~Denoiser() = default;
+
+void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
+  const GBuffer& gbuffer = frame.gbuffer;
+  const int w = gbuffer.width, h = gbuffer.height;
+  if (direct.width() != w || direct.height() != h)
+    fail("denoiser: direct light is {}x{}, the G-buffer {}x{}", direct.width(), direct.height(), w,
+         h);
+  if (indirect && (indirect->width() != w || indirect->height() != h))
+    fail("denoiser: indirect light is {}x{}, the G-buffer {}x{}", indirect->width(),
+         indirect->height(), w, h);
+  Buffers& b = *buffers_;
+  const size_t n = size_t(w) * size_t(h);
+  const bool has_indirect = indirect != nullptr;
+  HistoryState state = frame.state;
+  if (b.width != w || b.height != h) {
+    b.resize(w, h);
+    history_length_.assign(n, 0.0f);
+  }
+  if (!b.valid || b.had_indirect != has_indirect) state = HistoryState::kReset;
+  b.valid = true;
+  b.had_indirect = has_indirect;
+  // Copies of this frame's input for the raw view, dropped when not asked for.
+  b.raw_direct = keep_raw_ ? direct : Image();
+  b.raw_indirect = keep_raw_ && indirect ? *indirect : Image();
+  // Last run's "next" is this run's "previous".
+  std::swap(b.surface, b.prev_surface);
+  std::swap(b.history, b.prev_history);
+
+  const DenoiseSettings& s = settings_;
+  const bool rest = state == HistoryState::kRest && s.temporal;
+  const float cap_direct =
+      rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
+  const float cap_indirect = frame.indirect_accumulated
+                                 ? std::min(cap_direct, float(std::max(s.accumulated_history, 1)))
+                                 : cap_direct;
+  {
+    ScopedStage stage(frame.times, "denoise/temporal");
+    denoise::TemporalPass temporal;
+    temporal.g = gbuffer.view();
+    temporal.direct = direct.data();
+    temporal.indirect = indirect ? indirect->data() : nullptr;
+    temporal.prev_surface = std::as_const(b.prev_surface).view();
+    temporal.prev = b.prev_history.data();
+    temporal.next = b.history.data();
+    temporal.surface = b.surface.view();
+    temporal.light_direct = b.light.rgb(0);
+    temporal.light_indirect = b.light.rgb(3);
+    temporal.var_direct = b.variance[kVarDirect];
+    temporal.var_indirect = b.variance[kVarIndirect];
+    temporal.length = history_length_.data();
+    // Rest averages start at a reset (the first frame of a still) and continue at rest.
+    const bool reset = state == HistoryState::kReset;
+    temporal.rest = rest || reset ? b.rest.data() : nullptr;
+    temporal.width = w;
+    temporal.height = h;
+    denoise::TemporalSettings& ts = temporal.s;
+    ts.history = s.temporal && state != HistoryState::kReset;
+    ts.reproject = state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
+    ts.clip = state == HistoryState::kWorldChanged;
+    ts.rest_continues = rest && b.rest_valid;
+    ts.has_indirect = has_indirect;
+    ts.cap_direct = cap_direct;
+    ts.cap_indirect = cap_indirect;
+    ts.clip_gamma = s.clip_gamma;
+    ts.depth_tolerance = s.depth_tolerance;
+    ts.normal_tolerance = s.normal_tolerance;
+    for_rows(h, [&](int y) {
+      bool any_short = false;
+      for (int x = 0; x < w; ++x) any_short |= denoise::temporal_pixel(temporal, x, y);
+      b.row_short[size_t(y)] = any_short;
+    });
+  }
+  b.rest_valid = rest || state == HistoryState::kReset;
+
+  ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
+  ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
+  const bool spatial = s.spatial && s.atrous_iterations > 0;
+  if (spatial) {
+    ScopedStage stage(frame.times, "denoise/variance");
+    // The depth slope the a-trous depth weights are relative to.
+    const float* depth = b.surface.geometry[0];
+    float* slope = b.depth_slope.data();
+    for_rows(h, [&](int y) {
+      const size_t row = size_t(y) * size_t(w);
+      const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
+      row_loop(
+          w, 1,
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
+          },
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            slope[row + size_t(x)] = denoise::depth_slope_pixel<false>(depth, w, row, up, down, x);
+          });
+    });
+    // Box sums for rows within the box's radius of a row with a short history, then the spatial
+    // estimate on those rows.
+    for (int y = 0; y < h; ++y) {
+      bool needed = false;
+      for (int k = std::max(y - denoise::kVarianceBox, 0);
+           k <= std::min(y + denoise::kVarianceBox, h - 1); ++k)
+        needed |= b.row_short[size_t(k)] != 0;
+      b.row_box[size_t(y)] = needed;
+    }
+    denoise::BoxPass box;
+    box.history = b.history.data();
+    box.depth = depth;
+    for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
+    box.width = w;
+    for_rows(h, [&](int y) {
+      if (!b.row_box[size_t(y)]) return;
+      for (int x = 0; x < w; ++x) denoise::box_row_pixel(box, size_t(y) * size_t(w), x);
+    });
+    denoise::VariancePass variance;
+    variance.depth = depth;
+    variance.length = history_length_.data();
+    for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
+    variance.var_direct = b.variance[kVarDirect];
+    variance.var_indirect = b.variance[kVarIndirect];
+    variance.width = w;
+    variance.height = h;
+    variance.cap_indirect = cap_indirect;
+    for_rows(h, [&](int y) {
+      if (!b.row_short[size_t(y)]) return;
+      for (int x = 0; x < w; ++x) denoise::spatial_variance_pixel(variance, x, y);
+    });
+  }
+  {
+    ScopedStage stage(frame.times, "denoise/atrous");
+    if (spatial) {
+      const float* var_d = b.variance[kVarDirect];
+      const float* var_i = b.variance[kVarIndirect];
+      for (int k = 0; k < s.atrous_iterations; ++k) {
+        Planes<8>& out = b.filter[k & 1];
+        const denoise::AtrousPass pass{b.surface.view(),
+                                       b.depth_slope.data(),
+                                       light_d,
+                                       light_i,
+                                       var_d,
+                                       var_i,
+                                       out.rgb(kFilterDirect),
+                                       out.rgb(kFilterIndirect),
+                                       out[kVarDirect],
+                                       out[kVarIndirect],
+                                       w,
+                                       h,
+                                       1 << k,
+                                       s.sigma_luminance,
+                                       s.sigma_normal,
+                                       s.sigma_depth};
+        // The last pass's variance would guide nothing.
+        const bool variance = k + 1 < s.atrous_iterations;
+        if (has_indirect)
+          atrous_pass<1, true>(pass, variance);
+        else
+          atrous_pass<1, false>(pass, variance);
+        const Planes<8>& result = out;
+        light_d = result.rgb(kFilterDirect);
+        light_i = result.rgb(kFilterIndirect);
+        var_d = result[kVarDirect];
+        var_i = result[kVarIndirect];
+      }
+    }
+    const denoise::RemodulatePass remodulate{gbuffer.view(), rest ? b.rest.data() : nullptr,
+                                             light_d,        light_i,
+                                             direct.data(),  indirect ? indirect->data() : nullptr};
+    parallel_for(
+        n, [&](size_t i) { denoise::remodulate_pixel(remodulate, i); }, 4096);
+  }
+  if (keep_raw_) {
+    b.denoised = direct;
+    if (indirect) b.denoised += *indirect;
+    b.motion = gbuffer.motion;
+  } else {
+    b.denoised = Image();
+    b.motion.clear();
+  }
+}
+
+void Denoiser::debug_view(DenoiseView view, Image& out) const {
+  const Buffers& b = *buffers_;
+  const int w = b.width, h = b.height;
+  const size_t n = size_t(w) * size_t(h);
+  switch (view) {
+    case DenoiseView::kMotion:
+      if (b.motion.size() != n)
+        fail("denoiser: the motion view needs keep_raw(true) before the run");
+      break;
+    case DenoiseView::kDenoised:
+    case DenoiseView::kRaw: {
+      const bool raw = view == DenoiseView::kRaw;
+      if ((raw ? b.raw_direct : b.denoised).empty())
+        fail("denoiser: the {} view needs keep_raw(true) before the run", raw ? "raw" : "denoised");
+      out = raw ? b.raw_direct : b.denoised;
+      if (raw && !b.raw_indirect.empty()) out += b.raw_indirect;
+      return;
+    }
+    default:
+      break;
+  }
+  if (out.width() != w || out.height() != h) out = Image(w, h);
+  vec3* pixels = out.data();
+  switch (view) {
+    case DenoiseView::kHistory: {
+      const float inv_max = 1.0f / float(std::max(settings_.history_max, 1));
+      parallel_for(
+          n, [&](size_t i) { pixels[i] = vec3(std::min(history_length_[i] * inv_max, 1.0f)); });
+      return;
+    }
+    case DenoiseView::kMotion:
+      parallel_for(n, [&](size_t i) {
+        const vec2 m = glm::clamp(0.5f + b.motion[i] / (2.0f * kMotionViewRange), 0.0f, 1.0f);
+        pixels[i] = vec3(m.x, m.y, 0.0f);
+      });
+      return;
+    case DenoiseView::kVariance: {
+      // As a standard deviation, of direct and indirect light together.
+      const float* var_d = b.variance[kVarDirect];
+      const float* var_i = b.variance[kVarIndirect];
+      const bool has_indirect = b.had_indirect;
+      parallel_for(n, [&](size_t i) {
+        pixels[i] = vec3(std::sqrt(var_d[i] + (has_indirect ? var_i[i] : 0.0f)));
+      });
+      return;
+    }
+    default:
+      return;
+  }
+}
+
+}  // namespace bounce

@@ -1,0 +1,583 @@
+// The denoiser stage on hand-built G-buffers: the a-trous filter's edges and means, albedo
+// demodulation, running averages at rest, reprojection under a camera move and disocclusion,
+// variance clipping when the world changed, the switches, parameters and debug views.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bounce/core/error.h"
+#include "bounce/core/rng.h"
+#include "bounce/render/denoiser.h"
+
+namespace bounce {
+namespace {
+
+// A fronto-parallel plane at `depth` seen by every pixel: one object, albedo 1, no emission.
+GBuffer plane(int w, int h, float depth = 1.0f) {
+  GBuffer g;
+  g.resize(w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = g.view().index(x, y);
+      g.position[i] = vec3(float(x), float(y), depth);
+      g.normal[i] = g.geometric_normal[i] = vec3(0.0f, 0.0f, -1.0f);
+      g.albedo[i] = vec3(1.0f);
+      g.roughness[i] = 1.0f;
+      g.f0[i] = vec3(0.0f);
+      g.emission[i] = vec3(0.0f);
+      g.depth[i] = depth;
+      g.primitive[i] = 0;
+      g.mesh[i] = 0;
+      g.barycentric[i] = vec2(0.0f);
+    }
+  }
+  return g;
+}
+
+Image image_of(int w, int h, const std::function<vec3(int, int)>& f) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) image.at(x, y) = f(x, y);
+  return image;
+}
+
+// Grey light `level` times (1 + amplitude * u), u uniform in [-1, 1).
+Image noisy(int w, int h, Pcg32& rng, float amplitude,
+            const std::function<float(int, int)>& level) {
+  return image_of(w, h, [&](int x, int y) {
+    return vec3(level(x, y) * (1.0f + amplitude * (2.0f * rng.next_float() - 1.0f)));
+  });
+}
+
+// Runs the denoiser on copies of the images and returns them.
+struct Output {
+  Image direct, indirect;
+};
+Output run(Denoiser& d, const GBuffer& g, HistoryState state, const Image& direct,
+           const Image* indirect = nullptr, bool accumulated = false) {
+  StageTimes times;
+  Output out{direct, indirect ? *indirect : Image()};
+  d.run({g, state, accumulated, times}, out.direct, indirect ? &out.indirect : nullptr);
+  return out;
+}
+
+float mean_x(const Image& image, int x0, int x1, int y0, int y1) {
+  double sum = 0.0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += image.at(x, y).x;
+  return float(sum / double((x1 - x0) * (y1 - y0)));
+}
+
+float deviation_x(const Image& image, int x0, int x1, int y0, int y1) {
+  const float m = mean_x(image, x0, x1, y0, y1);
+  double sum = 0.0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += double(image.at(x, y).x - m) * (image.at(x, y).x - m);
+  return float(std::sqrt(sum / double((x1 - x0) * (y1 - y0))));
+}
+
+void expect_near_rel(vec3 a, vec3 b, float rel, const std::string& where) {
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(a[c], b[c], rel * std::max(std::fabs(b[c]), 1e-3f)) << where << " channel " << c;
+}
+
+// Two flat regions of different light split at column 16, with a depth step or a crease (a
+// normal step) between them: no filtered pixel crosses to the other side, each region's mean
+// stays within 1% and its noise goes down.
+void expect_sharp_edge(const GBuffer& g) {
+  const int w = g.width, h = g.height;
+  Pcg32 rng(7);
+  const Image light = noisy(w, h, rng, 0.3f, [](int x, int) { return x < 16 ? 1.0f : 4.0f; });
+  Denoiser d;
+  const Image out = run(d, g, HistoryState::kReset, light).direct;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      // The inputs lie in [0.7, 1.3] and [2.8, 5.2]: a blurred edge would leave that.
+      if (x < 16)
+        EXPECT_LT(out.at(x, y).x, 1.3f) << x << "," << y;
+      else
+        EXPECT_GT(out.at(x, y).x, 2.8f) << x << "," << y;
+    }
+  }
+  for (const auto& [x0, x1] : {std::pair{0, 16}, std::pair{16, w}}) {
+    EXPECT_NEAR(mean_x(out, x0, x1, 0, h), mean_x(light, x0, x1, 0, h),
+                0.01f * mean_x(light, x0, x1, 0, h));
+    EXPECT_LT(deviation_x(out, x0, x1, 0, h), 0.5f * deviation_x(light, x0, x1, 0, h));
+  }
+}
+
+TEST(Denoiser, AtrousKeepsADepthStepSharp) {
+  GBuffer g = plane(32, 24);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 16; x < g.width; ++x) g.depth[g.view().index(x, y)] = 2.0f;
+  expect_sharp_edge(g);
+}
+
+TEST(Denoiser, AtrousKeepsACreaseSharp) {
+  GBuffer g = plane(32, 24);
+  const vec3 tilted = glm::normalize(vec3(1.0f, 0.0f, -1.0f));
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 16; x < g.width; ++x) g.normal[g.view().index(x, y)] = tilted;
+  expect_sharp_edge(g);
+}
+
+TEST(Denoiser, SpatialFilterReducesNoiseOfAFlatRegion) {
+  const GBuffer g = plane(32, 32);
+  Pcg32 rng(3);
+  const Image light = noisy(32, 32, rng, 0.5f, [](int, int) { return 2.0f; });
+  Denoiser d;
+  const Image out = run(d, g, HistoryState::kReset, light).direct;
+  EXPECT_NEAR(mean_x(out, 0, 32, 0, 32), mean_x(light, 0, 32, 0, 32),
+              0.01f * mean_x(light, 0, 32, 0, 32));
+  EXPECT_LT(deviation_x(out, 0, 32, 0, 32), 0.25f * deviation_x(light, 0, 32, 0, 32));
+}
+
+// A textured albedo under constant light comes back as it went in, with the filter on: the
+// filter only ever sees the constant (demodulated) light. Emission is set apart and added back.
+TEST(Denoiser, DemodulationRoundTripsAlbedo) {
+  GBuffer g = plane(20, 20);
+  Pcg32 rng(11);
+  for (size_t i = 0; i < g.size(); ++i) {
+    g.albedo[i] = vec3(0.05f) + 0.9f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+    if (i % 7 == 0) g.emission[i] = vec3(3.0f, 2.0f, 1.0f);
+  }
+  const vec3 direct_light(0.8f, 0.5f, 0.3f), indirect_light(0.2f, 0.4f, 0.1f);
+  const Image direct = image_of(20, 20, [&](int x, int y) {
+    const size_t i = g.view().index(x, y);
+    return g.albedo[i] * direct_light + g.emission[i];
+  });
+  const Image indirect = image_of(
+      20, 20, [&](int x, int y) { return g.albedo[g.view().index(x, y)] * indirect_light; });
+  Denoiser d;
+  for (const HistoryState state : {HistoryState::kReset, HistoryState::kRest}) {
+    const Output out = run(d, g, state, direct, &indirect);
+    for (int y = 0; y < 20; ++y) {
+      for (int x = 0; x < 20; ++x) {
+        const std::string where = std::to_string(x) + "," + std::to_string(y);
+        expect_near_rel(out.direct.at(x, y), direct.at(x, y), 1e-5f, "direct " + where);
+        expect_near_rel(out.indirect.at(x, y), indirect.at(x, y), 1e-5f, "indirect " + where);
+      }
+    }
+  }
+}
+
+// At rest the history is a plain running average: N frames of independent noise come out as
+// their exact mean (no cap on the history), direct and per-frame indirect alike.
+TEST(Denoiser, FramesAtRestAverageToTheirExactMean) {
+  const int w = 8, h = 8, frames = 40;
+  GBuffer g = plane(w, h);
+  Pcg32 rng(5);
+  for (size_t i = 0; i < g.size(); ++i)
+    g.albedo[i] = vec3(0.2f) + 0.8f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+  Denoiser d;
+  d.settings().spatial = false;
+  d.settings().history_max = 4;  // a cap that must not apply at rest
+  std::vector<vec3> sum_d(g.size(), vec3(0.0f)), sum_i(g.size(), vec3(0.0f));
+  Output out;
+  for (int k = 0; k < frames; ++k) {
+    const Image direct = noisy(w, h, rng, 0.9f, [](int, int) { return 1.0f; });
+    const Image indirect = noisy(w, h, rng, 0.9f, [](int x, int) { return 0.1f * float(x); });
+    for (size_t i = 0; i < g.size(); ++i) {
+      sum_d[i] += direct.pixels()[i];
+      sum_i[i] += indirect.pixels()[i];
+    }
+    out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kRest, direct, &indirect);
+  }
+  for (size_t i = 0; i < g.size(); ++i) {
+    expect_near_rel(out.direct.pixels()[i], sum_d[i] / float(frames), 1e-5f, "direct");
+    expect_near_rel(out.indirect.pixels()[i], sum_i[i] / float(frames), 1e-5f, "indirect");
+    EXPECT_EQ(d.history_length()[i], float(frames - 1));
+  }
+}
+
+// Jittered frames at rest see several surfaces in an edge pixel: the emission (and the albedo)
+// are averaged with the light, so the pixel converges to the average of what it saw.
+TEST(Denoiser, EmissionSeenAtRestIsAveragedWithTheFrames) {
+  const int w = 4, h = 4, frames = 6;
+  Denoiser d;
+  d.settings().spatial = false;
+  vec3 sum(0.0f);
+  Output out;
+  for (int k = 0; k < frames; ++k) {
+    GBuffer g = plane(w, h);
+    const vec3 emission = k % 2 ? vec3(10.0f, 5.0f, 1.0f) : vec3(0.0f);
+    for (vec3& e : g.emission) e = emission;
+    const Image direct = image_of(w, h, [&](int, int) { return vec3(0.5f) + emission; });
+    sum += direct.at(1, 1);
+    out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kRest, direct);
+  }
+  expect_near_rel(out.direct.at(1, 1), sum / float(frames), 1e-5f, "edge pixel");
+}
+
+// Indirect light a technique accumulates itself keeps a short history even at rest.
+TEST(Denoiser, AccumulatedIndirectLightKeepsItsCap) {
+  const GBuffer g = plane(4, 4);
+  Denoiser d;
+  d.settings().spatial = false;
+  d.settings().accumulated_history = 2;
+  float expected_d = 0.0f, expected_i = 0.0f;
+  Output out;
+  for (int k = 0; k < 8; ++k) {
+    const float v = float(k * k);
+    const Image light = image_of(4, 4, [&](int, int) { return vec3(v); });
+    out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kRest, light, &light, true);
+    // Direct: the mean of all frames; indirect: alpha = 1 / (min(n, 2) + 1).
+    expected_d += (v - expected_d) / float(k + 1);
+    expected_i += (v - expected_i) / float(std::min(k, 2) + 1);
+  }
+  EXPECT_NEAR(out.direct.at(2, 2).x, expected_d, 1e-4f * expected_d);
+  EXPECT_NEAR(out.indirect.at(2, 2).x, expected_i, 1e-4f * expected_i);
+}
+
+// Motion while the camera moves: the history is capped at history_max.
+TEST(Denoiser, HistoryIsCappedWhileTheCameraMoves) {
+  const GBuffer g = plane(4, 4);
+  Denoiser d;
+  d.settings().spatial = false;
+  d.settings().history_max = 3;
+  float expected = 0.0f;
+  Output out;
+  for (int k = 0; k < 8; ++k) {
+    const float v = float(k);
+    out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kCameraMoved,
+              image_of(4, 4, [&](int, int) { return vec3(v); }));
+    expected += (v - expected) / float(std::min(k, 3) + 1);
+    EXPECT_EQ(d.history_length()[5], float(std::min(k, 3)));
+  }
+  EXPECT_NEAR(out.direct.at(1, 1).x, expected, 1e-5f);
+}
+
+// The world as the camera sees it: a slanted wall (object 0) whose texel (u, v) shows at pixel
+// (u + shift.x, v + shift.y).
+struct World {
+  static constexpr int kW = 24, kH = 16;
+  static float depth(int u, int v) { return 2.0f + 0.01f * float(u) + 0.005f * float(v); }
+  static GBuffer seen_from(ivec2 shift) {
+    GBuffer g = plane(kW, kH);
+    for (int y = 0; y < kH; ++y) {
+      for (int x = 0; x < kW; ++x) {
+        const size_t i = g.view().index(x, y);
+        g.depth[i] = depth(x - shift.x, y - shift.y);
+        g.albedo[i] = vec3(0.5f + 0.02f * float((x - shift.x + 100) % 7));
+        g.motion[i] = vec2(shift);
+      }
+    }
+    return g;
+  }
+};
+
+// A camera move by whole pixels: each pixel's history is last frame's value where its surface
+// was, and pixels whose surface was out of view or hidden by another object start again.
+TEST(Denoiser, ReprojectionFollowsTheSurfaceAndDetectsDisocclusion) {
+  const int w = World::kW, h = World::kH;
+  GBuffer before = World::seen_from(ivec2(0));
+  // Last frame, an object (id 1) in front covered pixels [4, 8) x [4, 8), and a part of the wall
+  // itself was elsewhere (same id, another depth) at [12, 16) x [8, 12).
+  for (int y = 4; y < 8; ++y)
+    for (int x = 4; x < 8; ++x) {
+      const size_t i = before.view().index(x, y);
+      before.mesh[i] = 1;
+      before.depth[i] = 1.0f;
+    }
+  for (int y = 8; y < 12; ++y)
+    for (int x = 12; x < 16; ++x) before.depth[before.view().index(x, y)] = 1.0f;
+  const ivec2 shift(3, -2);
+  const GBuffer after = World::seen_from(shift);
+
+  Pcg32 rng(9);
+  const Image light1 = image_of(w, h, [&](int x, int y) {
+    return before.albedo[before.view().index(x, y)] * vec3(1.0f + rng.next_float());
+  });
+  const Image light2 = image_of(w, h, [&](int x, int y) {
+    return after.albedo[after.view().index(x, y)] * vec3(1.0f + rng.next_float());
+  });
+  Denoiser d;
+  d.settings().spatial = false;
+  run(d, before, HistoryState::kReset, light1);
+  const Image out = run(d, after, HistoryState::kCameraMoved, light2).direct;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::string where = std::to_string(x) + "," + std::to_string(y);
+      const int sx = x - shift.x, sy = y - shift.y;
+      const bool in_view = sx >= 0 && sy >= 0 && sx < w && sy < h;
+      const bool covered = in_view && sx >= 4 && sx < 8 && sy >= 4 && sy < 8;
+      const bool moved = in_view && sx >= 12 && sx < 16 && sy >= 8 && sy < 12;
+      const float length = d.history_length()[after.view().index(x, y)];
+      if (!in_view || covered || moved) {
+        EXPECT_EQ(length, 0.0f) << where;
+        expect_near_rel(out.at(x, y), light2.at(x, y), 1e-5f, where);
+      } else {
+        EXPECT_EQ(length, 1.0f) << where;
+        // Demodulated by the albedo the surface had then and has now (the same texel).
+        expect_near_rel(out.at(x, y), 0.5f * (light1.at(sx, sy) + light2.at(x, y)), 1e-5f, where);
+      }
+    }
+  }
+}
+
+// Sub-pixel motion reads last frame's light bilinearly: a ramp is interpolated exactly.
+TEST(Denoiser, SubPixelMotionInterpolatesBilinearly) {
+  const int w = 16, h = 8;
+  const GBuffer before = plane(w, h);
+  GBuffer after = plane(w, h);
+  for (vec2& m : after.motion) m = vec2(0.25f, 0.5f);
+  const Image ramp = image_of(w, h, [](int x, int y) { return vec3(float(x) + 10.0f * y); });
+  const Image flat = image_of(w, h, [](int, int) { return vec3(1.0f); });
+  Denoiser d;
+  d.settings().spatial = false;
+  run(d, before, HistoryState::kReset, ramp);
+  const Image out = run(d, after, HistoryState::kCameraMoved, flat).direct;
+  for (int y = 1; y < h; ++y) {
+    for (int x = 1; x < w; ++x) {
+      const float history = float(x) - 0.25f + 10.0f * (float(y) - 0.5f);
+      EXPECT_NEAR(out.at(x, y).x, 0.5f * (history + 1.0f), 1e-4f) << x << "," << y;
+    }
+  }
+}
+
+// At rest the motion is zero: each pixel reads its own history, not a blend of neighbours.
+TEST(Denoiser, ZeroMotionReadsTheSamePixel) {
+  const GBuffer g = plane(8, 8);
+  Pcg32 rng(4);
+  const Image a = noisy(8, 8, rng, 0.9f, [](int, int) { return 1.0f; });
+  const Image b = noisy(8, 8, rng, 0.9f, [](int, int) { return 1.0f; });
+  for (const HistoryState state : {HistoryState::kRest, HistoryState::kCameraMoved}) {
+    Denoiser d;
+    d.settings().spatial = false;
+    run(d, g, HistoryState::kReset, a);
+    const Image out = run(d, g, state, b).direct;
+    for (size_t i = 0; i < g.size(); ++i)
+      EXPECT_NEAR(out.pixels()[i].x, 0.5f * (a.pixels()[i].x + b.pixels()[i].x), 1e-6f);
+  }
+}
+
+// When the world changed, a history far outside this frame's neighbourhood is clamped into its
+// mean +- clip_gamma sigma before blending; a camera move alone keeps it.
+TEST(Denoiser, WorldChangesClipTheHistoryToTheNeighbourhood) {
+  const int n = 12;
+  const GBuffer g = plane(n, n);
+  const Image old_light = image_of(n, n, [](int, int) { return vec3(100.0f); });
+  Pcg32 rng(13);
+  const Image light = image_of(n, n, [&](int, int) {
+    return vec3(1.0f) + 0.2f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+  });
+  for (const HistoryState state : {HistoryState::kWorldChanged, HistoryState::kCameraMoved}) {
+    Denoiser d;
+    d.settings().spatial = false;
+    const float gamma = d.settings().clip_gamma;
+    run(d, g, HistoryState::kReset, old_light);
+    const Image out = run(d, g, state, light).direct;
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        vec3 history(100.0f);
+        if (state == HistoryState::kWorldChanged) {
+          vec3 s1(0.0f), s2(0.0f);
+          float count = 0.0f;
+          for (int qy = std::max(y - 1, 0); qy <= std::min(y + 1, n - 1); ++qy)
+            for (int qx = std::max(x - 1, 0); qx <= std::min(x + 1, n - 1); ++qx) {
+              s1 += light.at(qx, qy);
+              s2 += light.at(qx, qy) * light.at(qx, qy);
+              count += 1.0f;
+            }
+          const vec3 mean = s1 / count;
+          const vec3 sigma = glm::sqrt(glm::max(s2 / count - mean * mean, vec3(0.0f)));
+          history = glm::min(history, mean + gamma * sigma);
+          EXPECT_LT(history.x, 1.5f);
+        }
+        expect_near_rel(out.at(x, y), 0.5f * (history + light.at(x, y)), 1e-4f,
+                        std::to_string(x) + "," + std::to_string(y));
+      }
+    }
+  }
+}
+
+// Background and lights seen directly (no surface) pass through untouched and never count as
+// history.
+TEST(Denoiser, PixelsWithoutASurfacePassThrough) {
+  GBuffer g = plane(12, 12);
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      const size_t i = g.view().index(x, y);
+      g.primitive[i] = g.mesh[i] = kNoPrimitive;
+      g.depth[i] = x == 0 ? std::numeric_limits<float>::infinity() : 3.0f;
+      g.normal[i] = g.geometric_normal[i] = vec3(0.0f);
+      g.albedo[i] = vec3(0.0f);
+      g.emission[i] = x == 0 ? vec3(0.0f) : vec3(40.0f, 30.0f, 20.0f);
+    }
+  }
+  Pcg32 rng(17);
+  Denoiser d;
+  for (const HistoryState state : {HistoryState::kReset, HistoryState::kRest}) {
+    const Image direct = image_of(12, 12, [&](int x, int) {
+      return x == 0 ? vec3(0.0f) : x < 4 ? vec3(40.0f, 30.0f, 20.0f) : vec3(rng.next_float());
+    });
+    const Image indirect = image_of(12, 12, [&](int, int) { return vec3(rng.next_float()); });
+    const Output out = run(d, g, state, direct, &indirect);
+    for (int y = 0; y < 12; ++y) {
+      for (int x = 0; x < 4; ++x) {
+        EXPECT_EQ(out.direct.at(x, y), direct.at(x, y)) << x << "," << y;
+        EXPECT_EQ(out.indirect.at(x, y), indirect.at(x, y)) << x << "," << y;
+        EXPECT_EQ(d.history_length()[g.view().index(x, y)], 0.0f);
+      }
+      // Lit pixels are filtered, and the bright light beside them does not leak in.
+      for (int x = 4; x < 12; ++x) EXPECT_LT(out.direct.at(x, y).x, 1.0f) << x << "," << y;
+    }
+  }
+}
+
+// Spatial off leaves a single frame as it came; temporal off forgets every earlier frame.
+TEST(Denoiser, SwitchesTurnTheirPartOff) {
+  GBuffer g = plane(16, 16);
+  Pcg32 rng(21);
+  for (vec3& a : g.albedo) a = vec3(0.1f) + 0.9f * vec3(rng.next_float());
+  const Image first = noisy(16, 16, rng, 0.8f, [](int, int) { return 1.0f; });
+  const Image second = noisy(16, 16, rng, 0.8f, [](int, int) { return 1.0f; });
+  {
+    Denoiser d;
+    d.settings().spatial = false;
+    const Image out = run(d, g, HistoryState::kReset, first).direct;
+    for (size_t i = 0; i < g.size(); ++i)
+      expect_near_rel(out.pixels()[i], first.pixels()[i], 1e-6f, "spatial off");
+    d.settings().spatial = true;
+    d.settings().atrous_iterations = 0;  // no pass is the same as no filter
+    const Image none = run(d, g, HistoryState::kReset, first).direct;
+    for (size_t i = 0; i < g.size(); ++i)
+      expect_near_rel(none.pixels()[i], first.pixels()[i], 1e-6f, "no iterations");
+  }
+  {
+    Denoiser d;
+    const Image out = run(d, g, HistoryState::kReset, first).direct;
+    float changed = 0.0f;
+    for (size_t i = 0; i < g.size(); ++i)
+      changed = std::max(changed, std::fabs(out.pixels()[i].x - first.pixels()[i].x));
+    EXPECT_GT(changed, 0.1f);
+  }
+  {
+    Denoiser d;
+    d.settings().temporal = false;
+    d.settings().spatial = false;
+    run(d, g, HistoryState::kReset, first);
+    const Image out = run(d, g, HistoryState::kRest, second).direct;
+    for (size_t i = 0; i < g.size(); ++i) {
+      expect_near_rel(out.pixels()[i], second.pixels()[i], 1e-6f, "temporal off");
+      EXPECT_EQ(d.history_length()[i], 0.0f);
+    }
+  }
+}
+
+// As frames at rest accumulate, the variance of their mean falls and the filter lets go: a
+// pixel-sized checkerboard of light (real detail, not noise) that the first frame's filter blurs
+// comes back, and the output stays within the noise of the plain per-pixel average (whose
+// relative standard deviation after 64 frames is 0.3 / sqrt(3 * 64) = 2.2%).
+TEST(Denoiser, FilterFadesAsTheHistoryGrows) {
+  const int n = 16, frames = 64;
+  const GBuffer g = plane(n, n);
+  Pcg32 rng(23);
+  auto level = [](int x, int y) { return (x + y) % 2 ? 1.0f : 1.5f; };
+  Denoiser d;
+  std::vector<float> sum(g.size(), 0.0f);
+  // Mean relative difference to the true light, and to the average of the frames so far.
+  auto errors = [&](const Image& out, int count) {
+    float truth = 0.0f, average = 0.0f;
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        const float v = out.at(x, y).x;
+        truth += std::fabs(v - level(x, y)) / level(x, y);
+        average += std::fabs(v - sum[g.view().index(x, y)] / float(count)) / level(x, y);
+      }
+    }
+    return std::pair{truth / float(n * n), average / float(n * n)};
+  };
+  for (int k = 0; k < frames; ++k) {
+    const Image light = noisy(n, n, rng, 0.3f, level);
+    for (size_t i = 0; i < g.size(); ++i) sum[i] += light.pixels()[i].x;
+    const Image out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kRest, light).direct;
+    const auto [truth, average] = errors(out, k + 1);
+    if (k == 0) {
+      EXPECT_GT(truth, 0.1f);  // blurred: the checkerboard's levels are 40% apart
+    }
+    if (k == frames - 1) {
+      EXPECT_LT(truth, 0.03f);
+      EXPECT_LT(average, 0.022f);
+    }
+  }
+}
+
+TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
+  Denoiser d;
+  std::set<std::string> names;
+  for (const Param& p : d.params().all()) names.insert(p.name);
+  EXPECT_EQ(names, (std::set<std::string>{"temporal", "spatial", "atrous_iterations",
+                                          "sigma_luminance", "sigma_normal", "sigma_depth",
+                                          "history_max", "accumulated_history", "clip_gamma",
+                                          "depth_tolerance", "normal_tolerance"}));
+  d.params().set("atrous_iterations", "2");
+  d.params().set("sigma_luminance", "8");
+  d.params().set("spatial", "off");
+  EXPECT_EQ(d.settings().atrous_iterations, 2);
+  EXPECT_EQ(d.settings().sigma_luminance, 8.0f);
+  EXPECT_FALSE(d.settings().spatial);
+  EXPECT_THROW(d.params().set("history_max", "0"), Error);
+  EXPECT_THROW(d.params().set("normal_tolerance", "2"), Error);
+}
+
+TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
+  GBuffer g = plane(8, 8);
+  Pcg32 rng(29);
+  const Image first = noisy(8, 8, rng, 0.5f, [](int, int) { return 1.0f; });
+  Denoiser d;
+  d.settings().history_max = 4;
+  Image view;
+  EXPECT_THROW(d.debug_view(DenoiseView::kRaw, view), Error);  // nothing kept yet
+  run(d, g, HistoryState::kReset, first);
+  d.keep_raw(true);
+  for (size_t i = 0; i < g.size(); ++i) g.motion[i] = vec2(i % 8 < 4 ? 0.0f : 1.0f, -2.0f);
+  const Image second = noisy(8, 8, rng, 0.5f, [](int, int) { return 1.0f; });
+  const Image indirect = noisy(8, 8, rng, 0.5f, [](int, int) { return 0.5f; });
+  const Output out = run(d, g, HistoryState::kCameraMoved, second, &indirect);
+
+  d.debug_view(DenoiseView::kRaw, view);
+  for (size_t i = 0; i < g.size(); ++i)
+    EXPECT_EQ(view.pixels()[i], second.pixels()[i] + indirect.pixels()[i]);
+  d.debug_view(DenoiseView::kHistory, view);
+  for (size_t i = 0; i < g.size(); ++i)
+    EXPECT_EQ(view.pixels()[i], vec3(d.history_length()[i] / 4.0f));
+  d.debug_view(DenoiseView::kMotion, view);
+  EXPECT_EQ(view.at(1, 3), vec3(0.5f, 0.5f - 2.0f / 16.0f, 0.0f));
+  EXPECT_EQ(view.at(5, 3), vec3(0.5f + 1.0f / 16.0f, 0.5f - 2.0f / 16.0f, 0.0f));
+  d.debug_view(DenoiseView::kVariance, view);
+  for (size_t i = 0; i < g.size(); ++i) EXPECT_GT(view.pixels()[i].x, 0.0f);
+  d.debug_view(DenoiseView::kDenoised, view);
+  for (size_t i = 0; i < g.size(); ++i)
+    expect_near_rel(view.pixels()[i], out.direct.pixels()[i] + out.indirect.pixels()[i], 1e-5f,
+                    "denoised view");
+}
+
+TEST(Denoiser, RecordsItsSubStages) {
+  const GBuffer g = plane(4, 4);
+  Denoiser d;
+  StageTimes times;
+  Image direct(4, 4, vec3(1.0f));
+  d.run({g, HistoryState::kReset, false, times}, direct, nullptr);
+  std::set<std::string> names;
+  for (const StageTime& s : times.stages()) names.insert(s.name);
+  EXPECT_EQ(names,
+            (std::set<std::string>{"denoise/temporal", "denoise/variance", "denoise/atrous"}));
+}
+
+TEST(Denoiser, RefusesImagesOfAnotherSize) {
+  const GBuffer g = plane(4, 4);
+  Denoiser d;
+  StageTimes times;
+  Image direct(4, 3);
+  EXPECT_THROW(d.run({g, HistoryState::kReset, false, times}, direct, nullptr), Error);
+}
+
+}  // namespace
+}  // namespace bounce
