@@ -31,10 +31,12 @@ TEST(CliTemporal, BenchReportsFlickerAndSettleAsTextAndJson) {
           path);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "flicker (32x32, 4 frames after 1 warm-up)")) << r.output;
-  // The same runs made here (bench renders one light sample per pixel unless told otherwise).
+  // The same runs made here (bench renders one light sample per pixel unless told otherwise, and
+  // denoises with the denoiser's defaults).
   FrameSettings settings;
   settings.width = settings.height = 32;
   settings.light_samples = 1;
+  settings.denoise = true;
   const auto tiled = [] { return make_technique("tiled"); };
   const Scene scene = make_cornell();
   const double at_rest = measure_flicker(scene, tiled, settings, 1, 4, true).flicker;
