@@ -15,11 +15,15 @@ __device__ bool pixel_of(int width, int height, int& x, int& y) {
 
 }  // namespace
 
+template <bool kIndirect, bool kRest>
 __global__ void check_temporal(denoise::TemporalPass pass, bool* short_history) {
   int x, y;
   if (pixel_of(pass.width, pass.height, x, y))
-    short_history[size_t(y) * size_t(pass.width) + size_t(x)] = denoise::temporal_pixel(pass, x, y);
+    short_history[size_t(y) * size_t(pass.width) + size_t(x)] =
+        denoise::temporal_pixel<kIndirect, kRest>(pass, x, y);
 }
+template __global__ void check_temporal<true, true>(denoise::TemporalPass, bool*);
+template __global__ void check_temporal<false, false>(denoise::TemporalPass, bool*);
 
 __global__ void check_depth_slope(const float* depth, int width, int height, float* slope) {
   int x, y;
@@ -40,9 +44,8 @@ __global__ void check_variance(denoise::BoxPass box, denoise::VariancePass varia
 template <int kRadius, bool kIndirect, bool kVariance>
 __global__ void check_atrous(denoise::AtrousPass pass) {
   int x, y;
-  if (!pixel_of(pass.width, pass.height, x, y)) return;
-  const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(pass, y);
-  denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(pass, rows, x);
+  if (pixel_of(pass.width, pass.height, x, y))
+    denoise::atrous_pixel<kRadius, kIndirect, kVariance>(pass, x, y);
 }
 template __global__ void check_atrous<1, true, true>(denoise::AtrousPass);
 template __global__ void check_atrous<1, false, false>(denoise::AtrousPass);

@@ -16,7 +16,6 @@ namespace bounce {
 using denoise::ConstRgbPlanes;
 using denoise::ConstSurfacePlanes;
 using denoise::HistoryTexel;
-using denoise::RestAverage;
 using denoise::RgbPlanes;
 using denoise::SurfacePlanes;
 
@@ -80,28 +79,71 @@ BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checke
   for (int x = x1; x < width; ++x) checked(x);
 }
 
+// The temporal pass row by row: the reprojected history (scalar: its taps go where the motion
+// says) into row planes, then the blend, in a loop the compiler vectorises. Marks the rows with a
+// short history.
+template <bool kIndirect, bool kRest>
+void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
+  for_rows(pass.height, [&](int y) {
+    const denoise::TemporalPass p = pass;
+    thread_local std::vector<float> row_planes;
+    row_planes.resize(10 * size_t(p.width));
+    denoise::ReprojectedRow row;
+    for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
+    for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
+    const size_t first = size_t(y) * size_t(p.width);
+    const float* v[10];
+    for (int c = 0; c < 10; ++c) v[c] = row.v[c];
+    uint32_t any_short = 0;  // (a bool reduction would not vectorise)
+#pragma GCC ivdep
+    for (int x = 0; x < p.width; ++x)
+      any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
+          p, first + size_t(x), denoise::load_reprojected(v, x)));
+    row_short[size_t(y)] = any_short != 0;
+  });
+}
+
+// One a-trous pass, row by row: the taps' geometric exponents and the lights' luminance scales
+// into a row buffer, then each light's filter reading them.
 template <int kRadius, bool kIndirect, bool kVariance>
 void atrous_pass(const denoise::AtrousPass& pass) {
   for_rows(pass.height, [&](int y) {
     const denoise::AtrousPass p = pass;
     const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(p, y);
+    thread_local std::vector<float> geometry_row;
+    const size_t stride = size_t(p.width);
+    geometry_row.resize(size_t(denoise::kAtrousGeometry<kRadius>) * stride);
+    float* geometry = geometry_row.data();
+    const int border = kRadius * p.step;
     row_loop(
-        p.width, kRadius * p.step,
+        p.width, border,
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(p, rows, x);
+          denoise::atrous_geometry<kRadius, kIndirect, true>(p, rows, x, geometry + x, stride);
         },
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_pixel<kRadius, kIndirect, false, kVariance>(p, rows, x);
+          denoise::atrous_geometry<kRadius, kIndirect, false>(p, rows, x, geometry + x, stride);
         });
+    for (int light = 0; light < (kIndirect ? 2 : 1); ++light) {
+      row_loop(
+          p.width, border,
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::atrous_light<kRadius, true, kVariance>(p, light, rows, x, geometry + x,
+                                                            stride);
+          },
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::atrous_light<kRadius, false, kVariance>(p, light, rows, x, geometry + x,
+                                                             stride);
+          });
+    }
   });
 }
 
-template <int kRadius, bool kIndirect>
-void atrous_pass(const denoise::AtrousPass& pass, bool variance) {
-  if (variance)
-    atrous_pass<kRadius, kIndirect, true>(pass);
+template <int kRadius>
+void atrous_pass(const denoise::AtrousPass& pass, bool indirect, bool variance) {
+  if (indirect)
+    variance ? atrous_pass<kRadius, true, true>(pass) : atrous_pass<kRadius, true, false>(pass);
   else
-    atrous_pass<kRadius, kIndirect, false>(pass);
+    variance ? atrous_pass<kRadius, false, true>(pass) : atrous_pass<kRadius, false, false>(pass);
 }
 
 }  // namespace
@@ -114,9 +156,10 @@ struct Denoiser::Buffers {
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
   SurfaceBuffers surface, prev_surface;
   std::vector<HistoryTexel> history, prev_history;
-  std::vector<RestAverage> rest;
-  Planes<6> light;  // accumulated demodulated light: direct rgb, indirect rgb
-  Planes<5> box;    // its moments summed along rows, for the spatial variance
+  std::vector<float> prev_length;  // last run's history_length_
+  Planes<6> rest;                  // RestPlanes: factor rgb, emission rgb
+  Planes<6> light;                 // accumulated demodulated light: direct rgb, indirect rgb
+  Planes<5> box;                   // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
@@ -133,7 +176,8 @@ struct Denoiser::Buffers {
     prev_surface.resize(n);
     history.assign(n, HistoryTexel{});
     prev_history.assign(n, HistoryTexel{});
-    rest.assign(n, RestAverage{vec3(1.0f), vec3(0.0f)});
+    prev_length.assign(n, 0.0f);
+    rest.resize(n);
     light.resize(n);
     box.resize(n);
     depth_slope.assign(n, 0.0f);
@@ -198,6 +242,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Last run's "next" is this run's "previous".
   std::swap(b.surface, b.prev_surface);
   std::swap(b.history, b.prev_history);
+  std::swap(history_length_, b.prev_length);
 
   const DenoiseSettings& s = settings_;
   const bool rest = state == HistoryState::kRest && s.temporal;
@@ -214,6 +259,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.indirect = indirect ? indirect->data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
     temporal.prev = b.prev_history.data();
+    temporal.prev_length = b.prev_length.data();
     temporal.next = b.history.data();
     temporal.surface = b.surface.view();
     temporal.light_direct = b.light.rgb(0);
@@ -221,9 +267,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.var_direct = b.variance[kVarDirect];
     temporal.var_indirect = b.variance[kVarIndirect];
     temporal.length = history_length_.data();
-    // Rest averages start at a reset (the first frame of a still) and continue at rest.
-    const bool reset = state == HistoryState::kReset;
-    temporal.rest = rest || reset ? b.rest.data() : nullptr;
     temporal.width = w;
     temporal.height = h;
     denoise::TemporalSettings& ts = temporal.s;
@@ -231,17 +274,20 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     ts.reproject = state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
     ts.clip = state == HistoryState::kWorldChanged;
     ts.rest_continues = rest && b.rest_valid;
-    ts.has_indirect = has_indirect;
     ts.cap_direct = cap_direct;
     ts.cap_indirect = cap_indirect;
     ts.clip_gamma = s.clip_gamma;
     ts.depth_tolerance = s.depth_tolerance;
     ts.normal_tolerance = s.normal_tolerance;
-    for_rows(h, [&](int y) {
-      bool any_short = false;
-      for (int x = 0; x < w; ++x) any_short |= denoise::temporal_pixel(temporal, x, y);
-      b.row_short[size_t(y)] = any_short;
-    });
+    // Rest averages start at a reset (the first frame of a still) and continue at rest.
+    const bool update_rest = rest || state == HistoryState::kReset;
+    temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
+    if (has_indirect)
+      update_rest ? temporal_pass<true, true>(temporal, b.row_short)
+                  : temporal_pass<true, false>(temporal, b.row_short);
+    else
+      update_rest ? temporal_pass<false, true>(temporal, b.row_short)
+                  : temporal_pass<false, false>(temporal, b.row_short);
   }
   b.rest_valid = rest || state == HistoryState::kReset;
 
@@ -304,28 +350,19 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       const float* var_i = b.variance[kVarIndirect];
       for (int k = 0; k < s.atrous_iterations; ++k) {
         Planes<8>& out = b.filter[k & 1];
-        const denoise::AtrousPass pass{b.surface.view(),
-                                       b.depth_slope.data(),
-                                       light_d,
-                                       light_i,
-                                       var_d,
-                                       var_i,
-                                       out.rgb(kFilterDirect),
-                                       out.rgb(kFilterIndirect),
-                                       out[kVarDirect],
-                                       out[kVarIndirect],
-                                       w,
-                                       h,
-                                       1 << k,
-                                       s.sigma_luminance,
-                                       s.sigma_normal,
-                                       s.sigma_depth};
+        denoise::AtrousPass pass;
+        pass.surface = b.surface.view();
+        pass.depth_slope = b.depth_slope.data();
+        pass.direct = {light_d, var_d, out.rgb(kFilterDirect), out[kVarDirect]};
+        pass.indirect = {light_i, var_i, out.rgb(kFilterIndirect), out[kVarIndirect]};
+        pass.width = w;
+        pass.height = h;
+        pass.step = 1 << k;
+        pass.sigma_luminance = s.sigma_luminance;
+        pass.sigma_normal = s.sigma_normal;
+        pass.sigma_depth = s.sigma_depth;
         // The last pass's variance would guide nothing.
-        const bool variance = k + 1 < s.atrous_iterations;
-        if (has_indirect)
-          atrous_pass<1, true>(pass, variance);
-        else
-          atrous_pass<1, false>(pass, variance);
+        atrous_pass<1>(pass, has_indirect, k + 1 < s.atrous_iterations);
         const Planes<8>& result = out;
         light_d = result.rgb(kFilterDirect);
         light_i = result.rgb(kFilterIndirect);
@@ -333,7 +370,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         var_i = result[kVarIndirect];
       }
     }
-    const denoise::RemodulatePass remodulate{gbuffer.view(), rest ? b.rest.data() : nullptr,
+    const denoise::RestPlanes rest_planes =
+        rest ? denoise::RestPlanes{b.rest.rgb(0), b.rest.rgb(3)} : denoise::RestPlanes{};
+    const denoise::RemodulatePass remodulate{gbuffer.view(), rest_planes,
                                              light_d,        light_i,
                                              direct.data(),  indirect ? indirect->data() : nullptr};
     parallel_for(
