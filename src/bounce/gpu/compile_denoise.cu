@@ -54,7 +54,7 @@ template __global__ void check_atrous<2, false, false>(denoise::AtrousPass);
 
 __global__ void check_remodulate(denoise::RemodulatePass pass) {
   const size_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < pass.g.size()) denoise::remodulate_pixel(pass, i);
+  if (i < pass.g.size()) denoise::remodulate_pixel<true, false>(pass, i);
 }
 
 }  // namespace bounce

@@ -709,21 +709,22 @@ BOUNCE_HD inline void atrous_pixel(const AtrousPass& p, int x, int y) {
 
 struct RemodulatePass {
   ConstGBufferView g;
-  ConstRestPlanes rest;             // at rest: remodulate with the averages (else null planes)
+  ConstRestPlanes rest;             // the averages, used at rest
   ConstRgbPlanes direct, indirect;  // filtered
   vec3* out_direct = nullptr;
   vec3* out_indirect = nullptr;  // null without indirect light
 };
 
-// Multiplies the filtered light back by its albedo and adds the emission; pixels without a
-// surface keep what the techniques wrote.
-BOUNCE_HD inline void remodulate_pixel(const RemodulatePass& p, size_t i) {
-  if (!p.g.hit(i)) return;
-  const bool rest = p.rest.factor.r != nullptr;
-  const vec3 f = rest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
-  const vec3 e = rest ? p.rest.emission.get(i) : p.g.emission[i];
-  p.out_direct[i] = p.direct.get(i) * f + e;
-  if (p.out_indirect) p.out_indirect[i] = p.indirect.get(i) * f;
+// Multiplies the filtered light back by its albedo and adds the emission (at rest, kRest: the
+// averages); pixels without a surface keep what the techniques wrote. Branch-free, so the CPU's
+// loop vectorises.
+template <bool kIndirect, bool kRest>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
+  const bool hit = p.g.hit(i);
+  const vec3 f = kRest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
+  const vec3 e = kRest ? p.rest.emission.get(i) : p.g.emission[i];
+  p.out_direct[i] = pick(hit, p.direct.get(i) * f + e, p.out_direct[i]);
+  if constexpr (kIndirect) p.out_indirect[i] = pick(hit, p.indirect.get(i) * f, p.out_indirect[i]);
 }
 
 }  // namespace bounce::denoise

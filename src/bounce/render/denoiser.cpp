@@ -103,6 +103,17 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
   });
 }
 
+template <bool kIndirect, bool kRest>
+void remodulate_pass(const denoise::RemodulatePass& pass, int height, int width) {
+  for_rows(height, [&](int y) {
+    const denoise::RemodulatePass p = pass;
+    const size_t first = size_t(y) * size_t(width);
+#pragma GCC ivdep
+    for (size_t i = first; i < first + size_t(width); ++i)
+      denoise::remodulate_pixel<kIndirect, kRest>(p, i);
+  });
+}
+
 // One a-trous pass, row by row: the taps' geometric exponents and the lights' luminance scales
 // into a row buffer, then each light's filter reading them.
 template <int kRadius, bool kIndirect, bool kVariance>
@@ -370,13 +381,16 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         var_i = result[kVarIndirect];
       }
     }
-    const denoise::RestPlanes rest_planes =
-        rest ? denoise::RestPlanes{b.rest.rgb(0), b.rest.rgb(3)} : denoise::RestPlanes{};
-    const denoise::RemodulatePass remodulate{gbuffer.view(), rest_planes,
-                                             light_d,        light_i,
-                                             direct.data(),  indirect ? indirect->data() : nullptr};
-    parallel_for(
-        n, [&](size_t i) { denoise::remodulate_pixel(remodulate, i); }, 4096);
+    const denoise::RemodulatePass remodulate{
+        gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
+        light_d,        light_i,
+        direct.data(),  indirect ? indirect->data() : nullptr};
+    if (has_indirect)
+      rest ? remodulate_pass<true, true>(remodulate, h, w)
+           : remodulate_pass<true, false>(remodulate, h, w);
+    else
+      rest ? remodulate_pass<false, true>(remodulate, h, w)
+           : remodulate_pass<false, false>(remodulate, h, w);
   }
   if (keep_raw_) {
     b.denoised = direct;
