@@ -1,7 +1,10 @@
-// nvcc check of the denoiser's per-pixel bodies (render/denoise_kernels.h): the temporal pass,
+// nvcc check of the denoiser's per-pixel bodies (render/denoise_*.h): the temporal pass,
 // the depth slope, the spatial variance's box sums, both a-trous kernels (3x3 and 5x5, with and
 // without indirect light, with the column tests a GPU pixel needs) and remodulation.
+#include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_temporal.h"
+#include "bounce/render/denoise_variance.h"
 
 namespace bounce {
 

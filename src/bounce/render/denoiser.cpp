@@ -9,7 +9,10 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_temporal.h"
+#include "bounce/render/denoise_variance.h"
 
 namespace bounce {
 
