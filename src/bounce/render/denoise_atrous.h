@@ -103,15 +103,21 @@ BOUNCE_HD inline AtrousRows<kRadius> atrous_rows(const AtrousPass& p, int y) {
   return rows;
 }
 
-// Tap column x + dx * step, replaced by x and masked when kCheckColumns and outside the image.
-template <bool kCheckColumns>
+// How a pass treats tap columns outside the image: none (the interior of a row), masked (weight
+// 0; the read lands in the neighbouring row or in the padding the CPU's planes carry, so loads
+// stay contiguous and the border loops vectorise too), or clamped to the centre and masked (any
+// planes: a GPU pixel).
+enum class Columns { kInside, kMasked, kClamped };
+
+// Tap column x + offset; `mask` becomes `outside` where the column is outside the image.
+template <Columns kColumns>
 BOUNCE_HD BOUNCE_DENOISE_INLINE int tap_column(int x, int offset, int width, float& mask,
                                                float outside) {
   int qx = x + offset;
-  if constexpr (kCheckColumns) {
+  if constexpr (kColumns != Columns::kInside) {
     const bool inside = (qx >= 0) & (qx < width);
     mask = inside ? mask : outside;
-    qx = inside ? qx : x;
+    if constexpr (kColumns == Columns::kClamped) qx = inside ? qx : x;
   }
   return qx;
 }
@@ -125,7 +131,7 @@ inline constexpr int kAtrousGeometry = kAtrousTaps<kRadius> + 2;
 // times depth weight), to geometry[k * stride] for tap k, and each light's luminance scale
 // log2(e) / (sigma_luminance * standard deviation + epsilon), its variance prefiltered over the
 // 3x3 pixels with a surface, to geometry[(taps + light) * stride] (light 0 direct, 1 indirect).
-template <int kRadius, bool kIndirect, bool kCheckColumns>
+template <int kRadius, bool kIndirect, Columns kColumns>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
                                                      const AtrousRows<kRadius>& rows, int x,
                                                      float* geometry, size_t stride) {
@@ -141,7 +147,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
     const float log2_kernel = std::log2(kernel);
     const float inv_distance = 1.0f / std::sqrt(float(Tap::dx * Tap::dx + Tap::dy * Tap::dy));
     float mask = rows.tap_mask[Tap::dy + kRadius];
-    const int qx = tap_column<kCheckColumns>(x, Tap::dx * p.step, p.width, mask, -1e4f);
+    const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, mask, -1e4f);
     const size_t q = rows.tap[Tap::dy + kRadius] + size_t(qx);
     const float cos_pq = nxp * p.surface.nx[q] + nyp * p.surface.ny[q] + nzp * p.surface.nz[q];
     geometry[size_t(decltype(k)::value) * stride] =
@@ -153,7 +159,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
     constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
     constexpr float hk = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
     float mask = rows.near_mask[dy + 1];
-    const int qx = tap_column<kCheckColumns>(x, dx, p.width, mask, 0.0f);
+    const int qx = tap_column<kColumns>(x, dx, p.width, mask, 0.0f);
     const size_t q = rows.near[dy + 1] + size_t(qx);
     const float wk = mask * (p.surface.depth[q] > 0.0f ? hk : 0.0f);
     vw += wk;
@@ -171,7 +177,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
 
 // One light's pass at pixel x (light 0 direct, 1 indirect), with what atrous_geometry wrote.
 // Without kVariance (the last pass) the variance is not filtered.
-template <int kRadius, bool kCheckColumns, bool kVariance>
+template <int kRadius, Columns kColumns, bool kVariance>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light_index,
                                                   const AtrousRows<kRadius>& rows, int x,
                                                   const float* geometry, size_t stride) {
@@ -186,7 +192,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light
   unrolled<kAtrousTaps<kRadius>>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
     using Tap = AtrousTap<kRadius, decltype(k)::value>;
     float unused = 0.0f;
-    const int qx = tap_column<kCheckColumns>(x, Tap::dx * p.step, p.width, unused, 0.0f);
+    const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, unused, 0.0f);
     const size_t q = rows.tap[Tap::dy + kRadius] + size_t(qx);
     const float r = light.in.r[q], g = light.in.g[q], b = light.in.b[q];
     const float w = exp2_weight(geometry[size_t(decltype(k)::value) * stride] -
@@ -209,9 +215,10 @@ template <int kRadius, bool kIndirect, bool kVariance>
 BOUNCE_HD inline void atrous_pixel(const AtrousPass& p, int x, int y) {
   const AtrousRows<kRadius> rows = atrous_rows<kRadius>(p, y);
   float geometry[kAtrousGeometry<kRadius>];
-  atrous_geometry<kRadius, kIndirect, true>(p, rows, x, geometry, 1);
-  atrous_light<kRadius, true, kVariance>(p, 0, rows, x, geometry, 1);
-  if constexpr (kIndirect) atrous_light<kRadius, true, kVariance>(p, 1, rows, x, geometry, 1);
+  constexpr Columns kClamped = Columns::kClamped;
+  atrous_geometry<kRadius, kIndirect, kClamped>(p, rows, x, geometry, 1);
+  atrous_light<kRadius, kClamped, kVariance>(p, 0, rows, x, geometry, 1);
+  if constexpr (kIndirect) atrous_light<kRadius, kClamped, kVariance>(p, 1, rows, x, geometry, 1);
 }
 
 }  // namespace bounce::denoise

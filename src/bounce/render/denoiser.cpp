@@ -27,15 +27,19 @@ namespace {
 // Motion of this many pixels shows as 0 or 1 in the motion view.
 constexpr float kMotionViewRange = 8.0f;
 
-// Float planes of one image size.
+// Float planes of one image size, each with kPlanePadding zeros before and after: the a-trous
+// border loops read taps beyond the image's first and last rows there (with weight 0) instead of
+// clamping their addresses, so they vectorise. The padding covers taps up to 1024 pixels away
+// (steps up to 2^7 with 5x5 kernels).
+constexpr size_t kPlanePadding = 1024;
 template <int kCount>
 struct Planes {
   std::array<std::vector<float>, kCount> planes;
   void resize(size_t n) {
-    for (auto& p : planes) p.assign(n, 0.0f);
+    for (auto& p : planes) p.assign(n + 2 * kPlanePadding, 0.0f);
   }
-  float* operator[](int k) { return planes[size_t(k)].data(); }
-  const float* operator[](int k) const { return planes[size_t(k)].data(); }
+  float* operator[](int k) { return planes[size_t(k)].data() + kPlanePadding; }
+  const float* operator[](int k) const { return planes[size_t(k)].data() + kPlanePadding; }
   RgbPlanes rgb(int first) { return {(*this)[first], (*this)[first + 1], (*this)[first + 2]}; }
   ConstRgbPlanes rgb(int first) const {
     return {(*this)[first], (*this)[first + 1], (*this)[first + 2]};
@@ -69,16 +73,18 @@ void for_rows(int height, const Body& body) {
 }
 
 // Runs a per-pixel body over row y: the columns within `border` of the image's sides with
-// column tests, the interior without, in a loop the compiler vectorises (a pass reads one set of
+// column tests, the interior without, in loops the compiler vectorises (a pass reads one set of
 // planes and writes another, so iterations are independent).
 template <typename Checked, typename Interior>
 BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checked,
                                     const Interior& interior) {
   const int x0 = std::min(border, width);
   const int x1 = std::max(width - border, x0);
+#pragma GCC ivdep
   for (int x = 0; x < x0; ++x) checked(x);
 #pragma GCC ivdep
   for (int x = x0; x < x1; ++x) interior(x);
+#pragma GCC ivdep
   for (int x = x1; x < width; ++x) checked(x);
 }
 
@@ -129,24 +135,26 @@ void atrous_pass(const denoise::AtrousPass& pass) {
     geometry_row.resize(size_t(denoise::kAtrousGeometry<kRadius>) * stride);
     float* geometry = geometry_row.data();
     const int border = kRadius * p.step;
+    constexpr denoise::Columns kMasked = denoise::Columns::kMasked;
+    constexpr denoise::Columns kInside = denoise::Columns::kInside;
     row_loop(
         p.width, border,
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_geometry<kRadius, kIndirect, true>(p, rows, x, geometry + x, stride);
+          denoise::atrous_geometry<kRadius, kIndirect, kMasked>(p, rows, x, geometry + x, stride);
         },
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_geometry<kRadius, kIndirect, false>(p, rows, x, geometry + x, stride);
+          denoise::atrous_geometry<kRadius, kIndirect, kInside>(p, rows, x, geometry + x, stride);
         });
     for (int light = 0; light < (kIndirect ? 2 : 1); ++light) {
       row_loop(
           p.width, border,
           [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::atrous_light<kRadius, true, kVariance>(p, light, rows, x, geometry + x,
-                                                            stride);
+            denoise::atrous_light<kRadius, kMasked, kVariance>(p, light, rows, x, geometry + x,
+                                                               stride);
           },
           [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::atrous_light<kRadius, false, kVariance>(p, light, rows, x, geometry + x,
-                                                             stride);
+            denoise::atrous_light<kRadius, kInside, kVariance>(p, light, rows, x, geometry + x,
+                                                               stride);
           });
     }
   });
