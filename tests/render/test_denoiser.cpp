@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bounce/core/error.h"
+#include "bounce/core/parallel.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/denoiser.h"
 
@@ -507,6 +508,25 @@ TEST(Denoiser, FilterFadesAsTheHistoryGrows) {
       EXPECT_LT(average, 0.022f);
     }
   }
+}
+
+// Rows are filtered independently: one thread or two give the same image, bit for bit.
+TEST(Denoiser, ResultDoesNotDependOnTheThreadCount) {
+  GBuffer g = World::seen_from(ivec2(0));
+  for (size_t i = 0; i < g.size(); i += 5) g.mesh[i] = 2;  // object edges everywhere
+  const GBuffer moved = World::seen_from(ivec2(1, 0));
+  Pcg32 rng(31);
+  const Image a = noisy(g.width, g.height, rng, 0.5f, [](int, int) { return 1.0f; });
+  const Image b = noisy(g.width, g.height, rng, 0.5f, [](int, int) { return 2.0f; });
+  std::vector<Image> results;
+  for (const int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    Denoiser d;
+    run(d, g, HistoryState::kReset, a, &b);
+    const Output out = run(d, moved, HistoryState::kWorldChanged, b, &a);
+    results.push_back(out.direct + out.indirect);
+  }
+  EXPECT_EQ(results[0].pixels(), results[1].pixels());
 }
 
 TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
