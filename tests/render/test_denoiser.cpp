@@ -577,6 +577,15 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
   for (size_t i = 0; i < g.size(); ++i)
     expect_near_rel(view.pixels()[i], out.direct.pixels()[i] + out.indirect.pixels()[i], 1e-5f,
                     "denoised view");
+
+  // Without keep_raw the copies are gone; the views the denoiser keeps anyway remain.
+  d.keep_raw(false);
+  for (vec2& m : g.motion) m = vec2(-4.0f, 8.0f);
+  run(d, g, HistoryState::kCameraMoved, second, &indirect);
+  EXPECT_THROW(d.debug_view(DenoiseView::kRaw, view), Error);
+  EXPECT_THROW(d.debug_view(DenoiseView::kDenoised, view), Error);
+  d.debug_view(DenoiseView::kMotion, view);
+  EXPECT_EQ(view.at(2, 2), vec3(0.25f, 1.0f, 0.0f));
 }
 
 TEST(Denoiser, RecordsItsSubStages) {

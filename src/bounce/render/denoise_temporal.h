@@ -41,7 +41,8 @@ struct TemporalPass {
   float* var_direct = nullptr;
   float* var_indirect = nullptr;
   float* length = nullptr;
-  RestPlanes rest;  // updated in place at rest and after a reset
+  RestPlanes rest;         // updated in place at rest and after a reset
+  vec2* motion = nullptr;  // a copy of the G-buffer's motion, for the debug view
   int width = 0;
   int height = 0;
   TemporalSettings s;
@@ -198,6 +199,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const*
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                     const Reprojected& r) {
+  p.motion[i] = p.g.motion[i];
   const bool hit = p.g.hit(i);
   const vec3 normal = p.g.normal[i];
   const float depth = p.g.depth[i];

@@ -206,6 +206,7 @@ struct Denoiser::Buffers {
     row_short.assign(size_t(h), 0);
     row_box.assign(size_t(h), 0);
     variance.resize(n);
+    motion.assign(n, vec2(0.0f));
     filter[0].resize(n);
     filter[1].resize(n);
     valid = false;
@@ -289,6 +290,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.var_direct = b.variance[kVarDirect];
     temporal.var_indirect = b.variance[kVarIndirect];
     temporal.length = history_length_.data();
+    temporal.motion = b.motion.data();
     temporal.width = w;
     temporal.height = h;
     denoise::TemporalSettings& ts = temporal.s;
@@ -406,10 +408,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   if (keep_raw_) {
     b.denoised = direct;
     if (indirect) b.denoised += *indirect;
-    b.motion = gbuffer.motion;
   } else {
     b.denoised = Image();
-    b.motion.clear();
   }
 }
 
@@ -418,10 +418,6 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
   const int w = b.width, h = b.height;
   const size_t n = size_t(w) * size_t(h);
   switch (view) {
-    case DenoiseView::kMotion:
-      if (b.motion.size() != n)
-        fail("denoiser: the motion view needs keep_raw(true) before the run");
-      break;
     case DenoiseView::kDenoised:
     case DenoiseView::kRaw: {
       const bool raw = view == DenoiseView::kRaw;
