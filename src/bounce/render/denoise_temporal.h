@@ -199,7 +199,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const*
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                     const Reprojected& r) {
-  p.motion[i] = p.g.motion[i];
+  const vec2 motion = p.g.motion[i];
+  p.motion[i].x = motion.x;  // (component by component: a struct copy would not vectorise)
+  p.motion[i].y = motion.y;
   const bool hit = p.g.hit(i);
   const vec3 normal = p.g.normal[i];
   const float depth = p.g.depth[i];
