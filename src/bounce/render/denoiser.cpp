@@ -185,7 +185,7 @@ struct Denoiser::Buffers {
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
-  Planes<8> variance;              // the variance estimate (kVarDirect, kVarIndirect)
+  Planes<2> variance;              // the variance estimate: direct, indirect
   Planes<8> filter[2];             // a-trous ping-pong
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
@@ -287,8 +287,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.surface = b.surface.view();
     temporal.light_direct = b.light.rgb(0);
     temporal.light_indirect = b.light.rgb(3);
-    temporal.var_direct = b.variance[kVarDirect];
-    temporal.var_indirect = b.variance[kVarIndirect];
+    temporal.var_direct = b.variance[0];
+    temporal.var_indirect = b.variance[1];
     temporal.length = history_length_.data();
     temporal.motion = b.motion.data();
     temporal.width = w;
@@ -357,8 +357,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     variance.depth = depth;
     variance.length = history_length_.data();
     for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
-    variance.var_direct = b.variance[kVarDirect];
-    variance.var_indirect = b.variance[kVarIndirect];
+    variance.var_direct = b.variance[0];
+    variance.var_indirect = b.variance[1];
     variance.width = w;
     variance.height = h;
     variance.cap_indirect = cap_indirect;
@@ -370,8 +370,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   {
     ScopedStage stage(frame.times, "denoise/atrous");
     if (spatial) {
-      const float* var_d = b.variance[kVarDirect];
-      const float* var_i = b.variance[kVarIndirect];
+      const float* var_d = b.variance[0];
+      const float* var_i = b.variance[1];
       for (int k = 0; k < s.atrous_iterations; ++k) {
         Planes<8>& out = b.filter[k & 1];
         denoise::AtrousPass pass;
@@ -447,8 +447,8 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       return;
     case DenoiseView::kVariance: {
       // As a standard deviation, of direct and indirect light together.
-      const float* var_d = b.variance[kVarDirect];
-      const float* var_i = b.variance[kVarIndirect];
+      const float* var_d = b.variance[0];
+      const float* var_i = b.variance[1];
       const bool has_indirect = b.had_indirect;
       parallel_for(n, [&](size_t i) {
         pixels[i] = vec3(std::sqrt(var_d[i] + (has_indirect ? var_i[i] : 0.0f)));
