@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bounce/core/error.h"
+#include "bounce/core/parallel.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/denoiser.h"
 
@@ -509,6 +510,25 @@ TEST(Denoiser, FilterFadesAsTheHistoryGrows) {
   }
 }
 
+// Rows are filtered independently: one thread or two give the same image, bit for bit.
+TEST(Denoiser, ResultDoesNotDependOnTheThreadCount) {
+  GBuffer g = World::seen_from(ivec2(0));
+  for (size_t i = 0; i < g.size(); i += 5) g.mesh[i] = 2;  // object edges everywhere
+  const GBuffer moved = World::seen_from(ivec2(1, 0));
+  Pcg32 rng(31);
+  const Image a = noisy(g.width, g.height, rng, 0.5f, [](int, int) { return 1.0f; });
+  const Image b = noisy(g.width, g.height, rng, 0.5f, [](int, int) { return 2.0f; });
+  std::vector<Image> results;
+  for (const int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    Denoiser d;
+    run(d, g, HistoryState::kReset, a, &b);
+    const Output out = run(d, moved, HistoryState::kWorldChanged, b, &a);
+    results.push_back(out.direct + out.indirect);
+  }
+  EXPECT_EQ(results[0].pixels(), results[1].pixels());
+}
+
 TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
   Denoiser d;
   std::set<std::string> names;
@@ -557,6 +577,15 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
   for (size_t i = 0; i < g.size(); ++i)
     expect_near_rel(view.pixels()[i], out.direct.pixels()[i] + out.indirect.pixels()[i], 1e-5f,
                     "denoised view");
+
+  // Without keep_raw the copies are gone; the views the denoiser keeps anyway remain.
+  d.keep_raw(false);
+  for (vec2& m : g.motion) m = vec2(-4.0f, 8.0f);
+  run(d, g, HistoryState::kCameraMoved, second, &indirect);
+  EXPECT_THROW(d.debug_view(DenoiseView::kRaw, view), Error);
+  EXPECT_THROW(d.debug_view(DenoiseView::kDenoised, view), Error);
+  d.debug_view(DenoiseView::kMotion, view);
+  EXPECT_EQ(view.at(2, 2), vec3(0.25f, 1.0f, 0.0f));
 }
 
 TEST(Denoiser, RecordsItsSubStages) {

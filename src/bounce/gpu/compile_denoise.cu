@@ -1,7 +1,10 @@
-// nvcc check of the denoiser's per-pixel bodies (render/denoise_kernels.h): the temporal pass,
+// nvcc check of the denoiser's per-pixel bodies (render/denoise_*.h): the temporal pass,
 // the depth slope, the spatial variance's box sums, both a-trous kernels (3x3 and 5x5, with and
 // without indirect light, with the column tests a GPU pixel needs) and remodulation.
+#include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_temporal.h"
+#include "bounce/render/denoise_variance.h"
 
 namespace bounce {
 
@@ -15,11 +18,15 @@ __device__ bool pixel_of(int width, int height, int& x, int& y) {
 
 }  // namespace
 
+template <bool kIndirect, bool kRest>
 __global__ void check_temporal(denoise::TemporalPass pass, bool* short_history) {
   int x, y;
   if (pixel_of(pass.width, pass.height, x, y))
-    short_history[size_t(y) * size_t(pass.width) + size_t(x)] = denoise::temporal_pixel(pass, x, y);
+    short_history[size_t(y) * size_t(pass.width) + size_t(x)] =
+        denoise::temporal_pixel<kIndirect, kRest>(pass, x, y);
 }
+template __global__ void check_temporal<true, true>(denoise::TemporalPass, bool*);
+template __global__ void check_temporal<false, false>(denoise::TemporalPass, bool*);
 
 __global__ void check_depth_slope(const float* depth, int width, int height, float* slope) {
   int x, y;
@@ -40,9 +47,8 @@ __global__ void check_variance(denoise::BoxPass box, denoise::VariancePass varia
 template <int kRadius, bool kIndirect, bool kVariance>
 __global__ void check_atrous(denoise::AtrousPass pass) {
   int x, y;
-  if (!pixel_of(pass.width, pass.height, x, y)) return;
-  const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(pass, y);
-  denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(pass, rows, x);
+  if (pixel_of(pass.width, pass.height, x, y))
+    denoise::atrous_pixel<kRadius, kIndirect, kVariance>(pass, x, y);
 }
 template __global__ void check_atrous<1, true, true>(denoise::AtrousPass);
 template __global__ void check_atrous<1, false, false>(denoise::AtrousPass);
@@ -51,7 +57,7 @@ template __global__ void check_atrous<2, false, false>(denoise::AtrousPass);
 
 __global__ void check_remodulate(denoise::RemodulatePass pass) {
   const size_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < pass.g.size()) denoise::remodulate_pixel(pass, i);
+  if (i < pass.g.size()) denoise::remodulate_pixel<true, false>(pass, i);
 }
 
 }  // namespace bounce

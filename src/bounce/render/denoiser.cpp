@@ -9,14 +9,16 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_temporal.h"
+#include "bounce/render/denoise_variance.h"
 
 namespace bounce {
 
 using denoise::ConstRgbPlanes;
 using denoise::ConstSurfacePlanes;
 using denoise::HistoryTexel;
-using denoise::RestAverage;
 using denoise::RgbPlanes;
 using denoise::SurfacePlanes;
 
@@ -25,15 +27,19 @@ namespace {
 // Motion of this many pixels shows as 0 or 1 in the motion view.
 constexpr float kMotionViewRange = 8.0f;
 
-// Float planes of one image size.
+// Float planes of one image size, each with kPlanePadding zeros before and after: the a-trous
+// border loops read taps beyond the image's first and last rows there (with weight 0) instead of
+// clamping their addresses, so they vectorise. The padding covers taps up to 1024 pixels away
+// (steps up to 2^7 with 5x5 kernels).
+constexpr size_t kPlanePadding = 1024;
 template <int kCount>
 struct Planes {
   std::array<std::vector<float>, kCount> planes;
   void resize(size_t n) {
-    for (auto& p : planes) p.assign(n, 0.0f);
+    for (auto& p : planes) p.assign(n + 2 * kPlanePadding, 0.0f);
   }
-  float* operator[](int k) { return planes[size_t(k)].data(); }
-  const float* operator[](int k) const { return planes[size_t(k)].data(); }
+  float* operator[](int k) { return planes[size_t(k)].data() + kPlanePadding; }
+  const float* operator[](int k) const { return planes[size_t(k)].data() + kPlanePadding; }
   RgbPlanes rgb(int first) { return {(*this)[first], (*this)[first + 1], (*this)[first + 2]}; }
   ConstRgbPlanes rgb(int first) const {
     return {(*this)[first], (*this)[first + 1], (*this)[first + 2]};
@@ -67,41 +73,99 @@ void for_rows(int height, const Body& body) {
 }
 
 // Runs a per-pixel body over row y: the columns within `border` of the image's sides with
-// column tests, the interior without, in a loop the compiler vectorises (a pass reads one set of
+// column tests, the interior without, in loops the compiler vectorises (a pass reads one set of
 // planes and writes another, so iterations are independent).
 template <typename Checked, typename Interior>
 BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checked,
                                     const Interior& interior) {
   const int x0 = std::min(border, width);
   const int x1 = std::max(width - border, x0);
+#pragma GCC ivdep
   for (int x = 0; x < x0; ++x) checked(x);
 #pragma GCC ivdep
   for (int x = x0; x < x1; ++x) interior(x);
+#pragma GCC ivdep
   for (int x = x1; x < width; ++x) checked(x);
 }
 
+// The temporal pass row by row: the reprojected history (scalar: its taps go where the motion
+// says) into row planes, then the blend, in a loop the compiler vectorises. Marks the rows with a
+// short history.
+template <bool kIndirect, bool kRest>
+void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
+  for_rows(pass.height, [&](int y) {
+    const denoise::TemporalPass p = pass;
+    thread_local std::vector<float> row_planes;
+    row_planes.resize(10 * size_t(p.width));
+    denoise::ReprojectedRow row;
+    for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
+    for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
+    const size_t first = size_t(y) * size_t(p.width);
+    const float* v[10];
+    for (int c = 0; c < 10; ++c) v[c] = row.v[c];
+    uint32_t any_short = 0;  // (a bool reduction would not vectorise)
+#pragma GCC ivdep
+    for (int x = 0; x < p.width; ++x)
+      any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
+          p, first + size_t(x), denoise::load_reprojected(v, x)));
+    row_short[size_t(y)] = any_short != 0;
+  });
+}
+
+template <bool kIndirect, bool kRest>
+void remodulate_pass(const denoise::RemodulatePass& pass, int height, int width) {
+  for_rows(height, [&](int y) {
+    const denoise::RemodulatePass p = pass;
+    const size_t first = size_t(y) * size_t(width);
+#pragma GCC ivdep
+    for (size_t i = first; i < first + size_t(width); ++i)
+      denoise::remodulate_pixel<kIndirect, kRest>(p, i);
+  });
+}
+
+// One a-trous pass, row by row: the taps' geometric exponents and the lights' luminance scales
+// into a row buffer, then each light's filter reading them.
 template <int kRadius, bool kIndirect, bool kVariance>
 void atrous_pass(const denoise::AtrousPass& pass) {
   for_rows(pass.height, [&](int y) {
     const denoise::AtrousPass p = pass;
     const denoise::AtrousRows<kRadius> rows = denoise::atrous_rows<kRadius>(p, y);
+    thread_local std::vector<float> geometry_row;
+    const size_t stride = size_t(p.width);
+    geometry_row.resize(size_t(denoise::kAtrousGeometry<kRadius>) * stride);
+    float* geometry = geometry_row.data();
+    const int border = kRadius * p.step;
+    constexpr denoise::Columns kMasked = denoise::Columns::kMasked;
+    constexpr denoise::Columns kInside = denoise::Columns::kInside;
     row_loop(
-        p.width, kRadius * p.step,
+        p.width, border,
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_pixel<kRadius, kIndirect, true, kVariance>(p, rows, x);
+          denoise::atrous_geometry<kRadius, kIndirect, kMasked>(p, rows, x, geometry + x, stride);
         },
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_pixel<kRadius, kIndirect, false, kVariance>(p, rows, x);
+          denoise::atrous_geometry<kRadius, kIndirect, kInside>(p, rows, x, geometry + x, stride);
         });
+    for (int light = 0; light < (kIndirect ? 2 : 1); ++light) {
+      row_loop(
+          p.width, border,
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::atrous_light<kRadius, kMasked, kVariance>(p, light, rows, x, geometry + x,
+                                                               stride);
+          },
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::atrous_light<kRadius, kInside, kVariance>(p, light, rows, x, geometry + x,
+                                                               stride);
+          });
+    }
   });
 }
 
-template <int kRadius, bool kIndirect>
-void atrous_pass(const denoise::AtrousPass& pass, bool variance) {
-  if (variance)
-    atrous_pass<kRadius, kIndirect, true>(pass);
+template <int kRadius>
+void atrous_pass(const denoise::AtrousPass& pass, bool indirect, bool variance) {
+  if (indirect)
+    variance ? atrous_pass<kRadius, true, true>(pass) : atrous_pass<kRadius, true, false>(pass);
   else
-    atrous_pass<kRadius, kIndirect, false>(pass);
+    variance ? atrous_pass<kRadius, false, true>(pass) : atrous_pass<kRadius, false, false>(pass);
 }
 
 }  // namespace
@@ -114,13 +178,14 @@ struct Denoiser::Buffers {
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
   SurfaceBuffers surface, prev_surface;
   std::vector<HistoryTexel> history, prev_history;
-  std::vector<RestAverage> rest;
-  Planes<6> light;  // accumulated demodulated light: direct rgb, indirect rgb
-  Planes<5> box;    // its moments summed along rows, for the spatial variance
+  std::vector<float> prev_length;  // last run's history_length_
+  Planes<6> rest;                  // RestPlanes: factor rgb, emission rgb
+  Planes<6> light;                 // accumulated demodulated light: direct rgb, indirect rgb
+  Planes<5> box;                   // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
-  Planes<8> variance;              // the variance estimate (kVarDirect, kVarIndirect)
+  Planes<2> variance;              // the variance estimate: direct, indirect
   Planes<8> filter[2];             // a-trous ping-pong
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
@@ -133,13 +198,15 @@ struct Denoiser::Buffers {
     prev_surface.resize(n);
     history.assign(n, HistoryTexel{});
     prev_history.assign(n, HistoryTexel{});
-    rest.assign(n, RestAverage{vec3(1.0f), vec3(0.0f)});
+    prev_length.assign(n, 0.0f);
+    rest.resize(n);
     light.resize(n);
     box.resize(n);
     depth_slope.assign(n, 0.0f);
     row_short.assign(size_t(h), 0);
     row_box.assign(size_t(h), 0);
     variance.resize(n);
+    motion.assign(n, vec2(0.0f));
     filter[0].resize(n);
     filter[1].resize(n);
     valid = false;
@@ -198,6 +265,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Last run's "next" is this run's "previous".
   std::swap(b.surface, b.prev_surface);
   std::swap(b.history, b.prev_history);
+  std::swap(history_length_, b.prev_length);
 
   const DenoiseSettings& s = settings_;
   const bool rest = state == HistoryState::kRest && s.temporal;
@@ -214,16 +282,15 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.indirect = indirect ? indirect->data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
     temporal.prev = b.prev_history.data();
+    temporal.prev_length = b.prev_length.data();
     temporal.next = b.history.data();
     temporal.surface = b.surface.view();
     temporal.light_direct = b.light.rgb(0);
     temporal.light_indirect = b.light.rgb(3);
-    temporal.var_direct = b.variance[kVarDirect];
-    temporal.var_indirect = b.variance[kVarIndirect];
+    temporal.var_direct = b.variance[0];
+    temporal.var_indirect = b.variance[1];
     temporal.length = history_length_.data();
-    // Rest averages start at a reset (the first frame of a still) and continue at rest.
-    const bool reset = state == HistoryState::kReset;
-    temporal.rest = rest || reset ? b.rest.data() : nullptr;
+    temporal.motion = b.motion.data();
     temporal.width = w;
     temporal.height = h;
     denoise::TemporalSettings& ts = temporal.s;
@@ -231,17 +298,20 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     ts.reproject = state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
     ts.clip = state == HistoryState::kWorldChanged;
     ts.rest_continues = rest && b.rest_valid;
-    ts.has_indirect = has_indirect;
     ts.cap_direct = cap_direct;
     ts.cap_indirect = cap_indirect;
     ts.clip_gamma = s.clip_gamma;
     ts.depth_tolerance = s.depth_tolerance;
     ts.normal_tolerance = s.normal_tolerance;
-    for_rows(h, [&](int y) {
-      bool any_short = false;
-      for (int x = 0; x < w; ++x) any_short |= denoise::temporal_pixel(temporal, x, y);
-      b.row_short[size_t(y)] = any_short;
-    });
+    // Rest averages start at a reset (the first frame of a still) and continue at rest.
+    const bool update_rest = rest || state == HistoryState::kReset;
+    temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
+    if (has_indirect)
+      update_rest ? temporal_pass<true, true>(temporal, b.row_short)
+                  : temporal_pass<true, false>(temporal, b.row_short);
+    else
+      update_rest ? temporal_pass<false, true>(temporal, b.row_short)
+                  : temporal_pass<false, false>(temporal, b.row_short);
   }
   b.rest_valid = rest || state == HistoryState::kReset;
 
@@ -287,8 +357,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     variance.depth = depth;
     variance.length = history_length_.data();
     for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
-    variance.var_direct = b.variance[kVarDirect];
-    variance.var_indirect = b.variance[kVarIndirect];
+    variance.var_direct = b.variance[0];
+    variance.var_indirect = b.variance[1];
     variance.width = w;
     variance.height = h;
     variance.cap_indirect = cap_indirect;
@@ -300,32 +370,23 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   {
     ScopedStage stage(frame.times, "denoise/atrous");
     if (spatial) {
-      const float* var_d = b.variance[kVarDirect];
-      const float* var_i = b.variance[kVarIndirect];
+      const float* var_d = b.variance[0];
+      const float* var_i = b.variance[1];
       for (int k = 0; k < s.atrous_iterations; ++k) {
         Planes<8>& out = b.filter[k & 1];
-        const denoise::AtrousPass pass{b.surface.view(),
-                                       b.depth_slope.data(),
-                                       light_d,
-                                       light_i,
-                                       var_d,
-                                       var_i,
-                                       out.rgb(kFilterDirect),
-                                       out.rgb(kFilterIndirect),
-                                       out[kVarDirect],
-                                       out[kVarIndirect],
-                                       w,
-                                       h,
-                                       1 << k,
-                                       s.sigma_luminance,
-                                       s.sigma_normal,
-                                       s.sigma_depth};
+        denoise::AtrousPass pass;
+        pass.surface = b.surface.view();
+        pass.depth_slope = b.depth_slope.data();
+        pass.direct = {light_d, var_d, out.rgb(kFilterDirect), out[kVarDirect]};
+        pass.indirect = {light_i, var_i, out.rgb(kFilterIndirect), out[kVarIndirect]};
+        pass.width = w;
+        pass.height = h;
+        pass.step = 1 << k;
+        pass.sigma_luminance = s.sigma_luminance;
+        pass.sigma_normal = s.sigma_normal;
+        pass.sigma_depth = s.sigma_depth;
         // The last pass's variance would guide nothing.
-        const bool variance = k + 1 < s.atrous_iterations;
-        if (has_indirect)
-          atrous_pass<1, true>(pass, variance);
-        else
-          atrous_pass<1, false>(pass, variance);
+        atrous_pass<1>(pass, has_indirect, k + 1 < s.atrous_iterations);
         const Planes<8>& result = out;
         light_d = result.rgb(kFilterDirect);
         light_i = result.rgb(kFilterIndirect);
@@ -333,19 +394,22 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         var_i = result[kVarIndirect];
       }
     }
-    const denoise::RemodulatePass remodulate{gbuffer.view(), rest ? b.rest.data() : nullptr,
-                                             light_d,        light_i,
-                                             direct.data(),  indirect ? indirect->data() : nullptr};
-    parallel_for(
-        n, [&](size_t i) { denoise::remodulate_pixel(remodulate, i); }, 4096);
+    const denoise::RemodulatePass remodulate{
+        gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
+        light_d,        light_i,
+        direct.data(),  indirect ? indirect->data() : nullptr};
+    if (has_indirect)
+      rest ? remodulate_pass<true, true>(remodulate, h, w)
+           : remodulate_pass<true, false>(remodulate, h, w);
+    else
+      rest ? remodulate_pass<false, true>(remodulate, h, w)
+           : remodulate_pass<false, false>(remodulate, h, w);
   }
   if (keep_raw_) {
     b.denoised = direct;
     if (indirect) b.denoised += *indirect;
-    b.motion = gbuffer.motion;
   } else {
     b.denoised = Image();
-    b.motion.clear();
   }
 }
 
@@ -354,10 +418,6 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
   const int w = b.width, h = b.height;
   const size_t n = size_t(w) * size_t(h);
   switch (view) {
-    case DenoiseView::kMotion:
-      if (b.motion.size() != n)
-        fail("denoiser: the motion view needs keep_raw(true) before the run");
-      break;
     case DenoiseView::kDenoised:
     case DenoiseView::kRaw: {
       const bool raw = view == DenoiseView::kRaw;
@@ -387,8 +447,8 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       return;
     case DenoiseView::kVariance: {
       // As a standard deviation, of direct and indirect light together.
-      const float* var_d = b.variance[kVarDirect];
-      const float* var_i = b.variance[kVarIndirect];
+      const float* var_d = b.variance[0];
+      const float* var_i = b.variance[1];
       const bool has_indirect = b.had_indirect;
       parallel_for(n, [&](size_t i) {
         pixels[i] = vec3(std::sqrt(var_d[i] + (has_indirect ? var_i[i] : 0.0f)));

@@ -87,8 +87,8 @@ class Denoiser {
   // size. Keeps what the next frame reprojects.
   void run(const DenoiseFrame& frame, Image& direct, Image* indirect);
 
-  // Writes a debug view of the last run into `out` (sized to match). kRaw, kDenoised and kMotion
-  // need keep_raw(true) before the run (it keeps copies of the run's input, output and motion).
+  // Writes a debug view of the last run into `out` (sized to match). kRaw and kDenoised need
+  // keep_raw(true) before the run (it keeps copies of the run's input and output).
   void debug_view(DenoiseView view, Image& out) const;
   void keep_raw(bool keep) { keep_raw_ = keep; }
   // Per pixel history length of the last run (frames), for tests and the debug view.

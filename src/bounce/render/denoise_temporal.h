@@ -1,0 +1,255 @@
+// The denoiser's temporal pass, per pixel (render/denoise_kernels.h): last frame's history
+// reprojected through the G-buffer's motion with SVGF's consistency tests, clipped when the world
+// changed, and this frame's demodulated light blended in.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "bounce/render/denoise_kernels.h"
+
+namespace bounce::denoise {
+
+// Reprojected history is kept when its accepted bilinear taps weigh at least this much.
+inline constexpr float kMinHistoryWeight = 0.01f;
+
+struct TemporalSettings {
+  bool history = false;    // last frame's history may be used (temporal on, no reset)
+  bool reproject = false;  // through the motion with consistency tests; else the same pixel (rest)
+  bool clip = false;       // clamp the history to this frame's neighbourhood (world changed)
+  bool rest_continues = false;  // at rest after a reset or rest: the rest averages continue
+  float cap_direct = 0.0f;      // history length cap for direct light (infinite at rest)
+  float cap_indirect = 0.0f;    // and for indirect light
+  float clip_gamma = 1.0f;
+  float depth_tolerance = 0.0f;
+  float normal_tolerance = 0.0f;
+};
+
+struct TemporalPass {
+  ConstGBufferView g;              // this frame's
+  const vec3* direct = nullptr;    // direct light with the emission the G-buffer saw
+  const vec3* indirect = nullptr;  // null without indirect light
+  ConstSurfacePlanes prev_surface;
+  const HistoryTexel* prev = nullptr;
+  const float* prev_length = nullptr;
+  // Out: the next history, this frame's surfaces, the accumulated light (the filter's input),
+  // the luminance variance of its mean from the moments over the frames, the history length.
+  HistoryTexel* next = nullptr;
+  SurfacePlanes surface;
+  RgbPlanes light_direct, light_indirect;
+  float* var_direct = nullptr;
+  float* var_indirect = nullptr;
+  float* length = nullptr;
+  RestPlanes rest;         // updated in place at rest and after a reset
+  vec2* motion = nullptr;  // a copy of the G-buffer's motion, for the debug view
+  int width = 0;
+  int height = 0;
+  TemporalSettings s;
+};
+
+// This frame's light at pixel i (which has a surface), demodulated; emission set apart.
+BOUNCE_HD inline void demodulated(const TemporalPass& p, size_t i, vec3& direct, vec3& indirect) {
+  const vec3 inv = 1.0f / demodulation_factor(p.g.albedo[i]);
+  direct = (p.direct[i] - p.g.emission[i]) * inv;
+  indirect = p.indirect ? p.indirect[i] * inv : vec3(0.0f);
+}
+
+// Last frame's history for this frame's pixel (x, y): the normalised sum of the taps kept.
+struct Reprojected {
+  HistoryTexel h;
+  float length = 0.0f;
+  bool kept = false;
+};
+BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size_t i) {
+  Reprojected r;
+  if (!p.s.reproject) {
+    // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
+    // frames may see another object at an edge, and that is the antialiasing).
+    r.kept = p.prev_surface.hit(i);
+    if (r.kept) {
+      r.h = p.prev[i];
+      r.length = p.prev_length[i];
+    }
+    return r;
+  }
+  // Bilinear taps around where the surface was: pixel centres are at integer + 0.5. A tap is kept
+  // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
+  // depth_tolerance relative, normals within normal_tolerance). The four taps are read
+  // branch-free (taps outside the image read this pixel with weight 0).
+  const vec2 m = p.g.motion[i];
+  const float px = float(x) - m.x, py = float(y) - m.y;
+  const float fx0 = std::floor(px), fy0 = std::floor(py);
+  const float fx = px - fx0, fy = py - fy0;
+  const int x0 = int(glm::clamp(fx0, -2.0f, float(p.width))),
+            y0 = int(glm::clamp(fy0, -2.0f, float(p.height)));
+  const uint32_t object = p.g.mesh[i];
+  const float z = p.g.depth[i], dz_max = p.s.depth_tolerance * z;
+  const vec3 normal = p.g.normal[i];
+  float weight = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const int dx = k & 1, dy = k >> 1;
+    const int qx = x0 + dx, qy = y0 + dy;
+    const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.width) & (qy < p.height);
+    const size_t q = inside ? size_t(qy) * size_t(p.width) + size_t(qx) : i;
+    const bool same = (p.prev_surface.object[q] == object) &
+                      (std::fabs(p.prev_surface.depth[q] - z) <= dz_max) &
+                      (glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance);
+    const float w = (inside & same) ? (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy) : 0.0f;
+    weight += w;
+    r.h.add(w, p.prev[q]);
+    r.length += w * p.prev_length[q];
+  }
+  r.kept = weight >= kMinHistoryWeight;
+  if (!r.kept) return Reprojected{};
+  const float inv = 1.0f / weight;
+  r.h.direct *= inv;
+  r.h.indirect *= inv;
+  r.length *= inv;
+  return r;
+}
+
+// Mean and standard deviation per channel of this frame's demodulated light around (x, y), over
+// the 3x3 pixels with a surface.
+struct ColorBox {
+  vec3 mean{0.0f}, sigma{0.0f};
+};
+struct ColorBoxes {
+  ColorBox direct, indirect;
+};
+BOUNCE_HD inline ColorBoxes neighbourhood(const TemporalPass& p, int x, int y) {
+  vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
+  float n = 0.0f;
+  for (int qy = glm::max(y - 1, 0); qy <= glm::min(y + 1, p.height - 1); ++qy) {
+    for (int qx = glm::max(x - 1, 0); qx <= glm::min(x + 1, p.width - 1); ++qx) {
+      const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
+      if (!p.g.hit(q)) continue;
+      vec3 d, ind;
+      demodulated(p, q, d, ind);
+      d1 += d;
+      d2 += d * d;
+      i1 += ind;
+      i2 += ind * ind;
+      n += 1.0f;
+    }
+  }
+  auto box = [n](vec3 s1, vec3 s2) {
+    ColorBox b;
+    b.mean = s1 / n;
+    b.sigma = glm::sqrt(glm::max(s2 / n - b.mean * b.mean, vec3(0.0f)));
+    return b;
+  };
+  return {box(d1, d2), box(i1, i2)};
+}
+
+// Clamps a history colour (rgb, mean squared luminance) into mean +- gamma sigma, keeping the
+// moments' variance.
+BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec4& color) {
+  const vec3 clipped =
+      glm::clamp(vec3(color), box.mean - gamma * box.sigma, box.mean + gamma * box.sigma);
+  const float l0 = luminance_of(vec3(color)), l = luminance_of(clipped);
+  color = vec4(clipped, color.w + l * l - l0 * l0);
+}
+
+// The first half of the temporal pass at pixel (x, y): last frame's history where it is kept,
+// clipped to this frame's neighbourhood when the world changed.
+BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int y) {
+  const size_t i = size_t(y) * size_t(p.width) + size_t(x);
+  if (!p.s.history || !p.g.hit(i)) return Reprojected{};
+  Reprojected r = reproject(p, x, y, i);
+  if (r.kept && p.s.clip) {
+    const ColorBoxes boxes = neighbourhood(p, x, y);
+    clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
+    if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
+  }
+  return r;
+}
+
+// A row of temporal_history's results as planes, where the CPU's first half leaves them for the
+// second, whose loop then vectorises.
+struct ReprojectedRow {
+  float* v[10] = {};  // direct rgb and mean squared luminance, the same of indirect, length, kept
+
+  BOUNCE_HD void store(int x, const Reprojected& r) const {
+    for (int c = 0; c < 4; ++c) {
+      v[c][x] = r.h.direct[c];
+      v[4 + c][x] = r.h.indirect[c];
+    }
+    v[8][x] = r.length;
+    v[9][x] = r.kept ? 1.0f : 0.0f;
+  }
+};
+
+// ReprojectedRow's entry x, read through plain pointers (the vectoriser's need).
+BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const* v, int x) {
+  Reprojected r;
+  r.h.direct = vec4(v[0][x], v[1][x], v[2][x], v[3][x]);
+  r.h.indirect = vec4(v[4][x], v[5][x], v[6][x], v[7][x]);
+  r.length = v[8][x];
+  r.kept = v[9][x] != 0.0f;
+  return r;
+}
+
+// The second half at pixel i: blends this frame's demodulated light into the history `r` and
+// writes the next history and the filter's inputs. alpha = 1 / (n + 1) with n the (capped)
+// history length: a plain running average while n is below the cap. Pixels without a surface
+// pass their light through, with no history. Branch-free, so the CPU's row loop vectorises;
+// kIndirect and kRest (update the rest averages) are the pass's switches. Returns whether the
+// pixel's history is too short for its own variance (the spatial estimate then stands in).
+template <bool kIndirect, bool kRest>
+BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
+                                                    const Reprojected& r) {
+  const vec2 motion = p.g.motion[i];
+  p.motion[i].x = motion.x;  // (component by component: a struct copy would not vectorise)
+  p.motion[i].y = motion.y;
+  const bool hit = p.g.hit(i);
+  const vec3 normal = p.g.normal[i];
+  const float depth = p.g.depth[i];
+  const uint32_t mesh = p.g.mesh[i];
+  p.surface.depth[i] = pick(hit, depth, 0.0f);
+  p.surface.nx[i] = pick(hit, normal.x, 0.0f);
+  p.surface.ny[i] = pick(hit, normal.y, 0.0f);
+  p.surface.nz[i] = pick(hit, normal.z, 0.0f);
+  p.surface.object[i] = pick(hit, mesh, kNoPrimitive);
+
+  const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];
+  const vec3 inv = 1.0f / factor;
+  const vec3 in_d = p.direct[i];
+  const vec3 in_i = kIndirect ? p.indirect[i] : vec3(0.0f);
+  const vec3 raw_d = (in_d - emission) * inv, raw_i = in_i * inv;
+  const bool kept = hit & r.kept;
+  const float n = pick(kept, glm::min(r.length + 1.0f, p.s.cap_direct), 0.0f);
+  const float alpha = 1.0f / (n + 1.0f);
+  const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
+  // This frame as a texel, blended in: colour, squared luminance.
+  const float l_d = luminance_of(raw_d), l_i = luminance_of(raw_i);
+  const vec4 h_d = pick(kept, r.h.direct, vec4(0.0f)), h_i = pick(kept, r.h.indirect, vec4(0.0f));
+  const vec4 next_d = h_d + (vec4(raw_d, l_d * l_d) - h_d) * alpha;
+  const vec4 next_i = h_i + (vec4(raw_i, l_i * l_i) - h_i) * alpha_i;
+  p.next[i].direct = pick(hit, next_d, vec4(0.0f));
+  p.next[i].indirect = pick(hit, next_i, vec4(0.0f));
+  p.light_direct.set(i, pick(hit, vec3(next_d), in_d));
+  if constexpr (kIndirect) p.light_indirect.set(i, pick(hit, vec3(next_i), in_i));
+  // The variance of the mean of the frames (the spatial estimate replaces it where n is small).
+  const float m1_d = luminance_of(vec3(next_d)), m1_i = luminance_of(vec3(next_i));
+  p.var_direct[i] = pick(hit, glm::max(next_d.w - m1_d * m1_d, 0.0f) * alpha, 0.0f);
+  p.var_indirect[i] = pick(hit, glm::max(next_i.w - m1_i * m1_i, 0.0f) * alpha_i, 0.0f);
+  p.length[i] = n;
+  if constexpr (kRest) {
+    // The rest average continues where this pixel's history does, else it starts here.
+    const bool continues = kept & p.s.rest_continues;
+    const vec3 f0 = p.rest.factor.get(i), e0 = p.rest.emission.get(i);
+    p.rest.factor.set(i, pick(continues, f0 + (factor - f0) * alpha, factor));
+    p.rest.emission.set(i, pick(continues, e0 + (emission - e0) * alpha, emission));
+  }
+  return hit & (n + 1.0f < kShortHistory);
+}
+
+// The whole temporal pass at pixel (x, y), for a launcher that runs one thread per pixel.
+template <bool kIndirect, bool kRest>
+BOUNCE_HD inline bool temporal_pixel(const TemporalPass& p, int x, int y) {
+  const size_t i = size_t(y) * size_t(p.width) + size_t(x);
+  return temporal_blend<kIndirect, kRest>(p, i, temporal_history(p, x, y));
+}
+
+}  // namespace bounce::denoise

@@ -1,0 +1,101 @@
+// What the denoiser's a-trous filter needs besides the light (render/denoise_kernels.h): the local
+// depth slope its depth weights are relative to, and the spatial variance estimate that stands in
+// where a pixel's history is short.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "bounce/render/denoise_kernels.h"
+
+namespace bounce::denoise {
+
+// ---- Depth slope ------------------------------------------------------------------------------
+
+// |dz/dx| + |dz/dy| at pixel x of the row starting at `row`, each from the flatter side (so a
+// depth edge does not count); `up` and `down` are the neighbouring rows' starts (the row itself
+// outside the image). Sides without a surface (depth 0) or outside the image do not count.
+template <bool kCheckColumns>
+BOUNCE_HD BOUNCE_DENOISE_INLINE float depth_slope_pixel(const float* depth, int width, size_t row,
+                                                        size_t up, size_t down, int x) {
+  constexpr float kNone = 1e30f;
+  const size_t i = row + size_t(x);
+  const float z = depth[i];
+  auto side = [z](float q) { return q > 0.0f ? std::fabs(q - z) : kNone; };
+  float left = kNone, right = kNone;
+  if constexpr (kCheckColumns) {
+    if (x > 0) left = side(depth[i - 1]);
+    if (x + 1 < width) right = side(depth[i + 1]);
+  } else {
+    left = side(depth[i - 1]);
+    right = side(depth[i + 1]);
+  }
+  const float sx = glm::min(left, right),
+              sy = glm::min(side(depth[up + size_t(x)]), side(depth[down + size_t(x)]));
+  return z > 0.0f ? (sx < kNone ? sx : 0.0f) + (sy < kNone ? sy : 0.0f) : 0.0f;
+}
+
+// ---- Spatial variance ---------------------------------------------------------------------------
+// Where a pixel's history is short, its variance comes from its neighbourhood: the moments summed
+// over a 7x7 box of pixels with a surface (a separable sum: a row pass, then a column pass), only
+// around rows that hold such pixels. Unlike SVGF's 7x7 bilateral estimate it ignores geometry;
+// the a-trous weights still stop at geometric edges, and the box costs a few additions per pixel
+// whatever the number of short pixels (all of them after a reset).
+
+inline constexpr int kVarianceBox = 3;  // radius: 7x7
+
+struct BoxPass {
+  const HistoryTexel* history = nullptr;  // this frame's accumulation, with its moments
+  const float* depth = nullptr;           // > 0 where there is a surface
+  float* sums[5] = {};  // out: moments summed along rows (direct m1, m2, indirect m1, m2), count
+  int width = 0;
+};
+
+// Row sums at pixel x of the row starting at index `row`.
+BOUNCE_HD inline void box_row_pixel(const BoxPass& p, size_t row, int x) {
+  float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (int qx = glm::max(x - kVarianceBox, 0); qx <= glm::min(x + kVarianceBox, p.width - 1);
+       ++qx) {
+    const size_t q = row + size_t(qx);
+    if (!(p.depth[q] > 0.0f)) continue;
+    const HistoryTexel& t = p.history[q];
+    s[0] += luminance_of(vec3(t.direct));
+    s[1] += t.direct.w;
+    s[2] += luminance_of(vec3(t.indirect));
+    s[3] += t.indirect.w;
+    s[4] += 1.0f;
+  }
+  for (int k = 0; k < 5; ++k) p.sums[k][row + size_t(x)] = s[k];
+}
+
+struct VariancePass {
+  const float* depth = nullptr;   // > 0 where there is a surface
+  const float* length = nullptr;  // history length
+  const float* sums[5] = {};      // BoxPass's output
+  float* var_direct = nullptr;    // in/out: luminance variance of the accumulated mean
+  float* var_indirect = nullptr;
+  int width = 0;
+  int height = 0;
+  float cap_indirect = 0.0f;
+};
+
+// Where pixel (x, y)'s history is short, replaces its variance by the box estimate divided by the
+// frames averaged.
+BOUNCE_HD inline void spatial_variance_pixel(const VariancePass& p, int x, int y) {
+  const size_t i = size_t(y) * size_t(p.width) + size_t(x);
+  const float frames = p.length[i] + 1.0f;
+  if (!(frames < kShortHistory) || !(p.depth[i] > 0.0f)) return;
+  float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (int qy = glm::max(y - kVarianceBox, 0); qy <= glm::min(y + kVarianceBox, p.height - 1);
+       ++qy) {
+    const size_t q = size_t(qy) * size_t(p.width) + size_t(x);
+    for (int c = 0; c < 5; ++c) s[c] += p.sums[c][q];
+  }
+  const float inv = 1.0f / s[4];
+  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
+  p.var_direct[i] = glm::max(m2_d - m1_d * m1_d, 0.0f) / frames;
+  p.var_indirect[i] = glm::max(m2_i - m1_i * m1_i, 0.0f) / glm::min(frames, p.cap_indirect + 1.0f);
+}
+
+}  // namespace bounce::denoise
