@@ -255,6 +255,7 @@ TEST(TiledReuse, FramesAfterAMoveAreIdenticalWithOneAndTwoThreads) {
 }
 
 TEST(TiledReuse, WithoutAccumulationEachFrameHasItsOwnPhotons) {
+  EXPECT_EQ(TiledPhotonMapping().photons().size(), 0u);  // none before the first frame
   TiledRun run(8);
   const Camera a = run.scene.camera;
   std::vector<vec3> first_photons;

@@ -26,7 +26,7 @@ class PhotonHistory {
   // Pass k, oldest first (k < size()), and the sample index it was traced with.
   const PhotonBuffer& pass(size_t k) const { return slots_[slot(k)]; }
   uint32_t sample(size_t k) const { return samples_[slot(k)]; }
-  const PhotonBuffer& newest() const { return pass(count_ - 1); }
+  const PhotonBuffer& newest() const { return pass(count_ - 1); }  // size() > 0
   size_t photon_count() const;
 
   // Every pass's photons in one buffer, oldest pass first, each pass in its own order: the union

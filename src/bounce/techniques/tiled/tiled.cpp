@@ -70,6 +70,11 @@ std::vector<std::string> TiledPhotonMapping::still_defaults() const {
   return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
 }
 
+const PhotonBuffer& TiledPhotonMapping::photons() const {
+  static const PhotonBuffer none;
+  return history_.size() > 0 ? history_.newest() : none;
+}
+
 float TiledPhotonMapping::progressive_radius(float full_radius, float alpha, uint32_t passes) {
   float radius2 = full_radius * full_radius;
   for (uint32_t i = 1; i < passes; ++i) radius2 *= (float(i - 1) + alpha) / float(i);

@@ -67,8 +67,8 @@ class TiledPhotonMapping final : public Technique {
   float full_radius() const { return full_radius_; }
   // The passes kept for reuse; the newest is this frame's.
   const PhotonHistory& history() const { return history_; }
-  // This frame's photons.
-  const PhotonBuffer& photons() const { return history_.newest(); }
+  // This frame's photons (none before the first frame).
+  const PhotonBuffer& photons() const;
   const TileBins& tile_bins() const { return bins_; }
   size_t edge_pixels() const { return edge_pixels_; }
 
