@@ -17,8 +17,8 @@ using cli_test::contains;
 using cli_test::Result;
 using cli_test::run;
 
-// Photons stored per frame, from `bench ... --json`. Without accumulation tiled traces the same
-// photon paths every frame, so this depends only on the poses of the frames.
+// Photons stored per frame, from `bench ... --json`. Without accumulation tiled's photon paths
+// follow the frame index, so this depends only on the poses and the indices of the frames.
 double stored_photons_per_frame(const std::string& args) {
   const std::filesystem::path dir = cli_test::scratch_dir("bench-animate");
   const std::string path = (dir / "bench.json").string();
@@ -39,12 +39,15 @@ TEST(CliAnimate, BenchPlaysTheAnimationAndTimesTheSceneStage) {
   EXPECT_TRUE(contains(r.output, "\nscene ")) << r.output;
 
   // Frame k of an animated bench is the scene posed at --at + k/30 s: two animated frames store
-  // the photons of the two poses, each rendered still.
-  const std::string tiled = scene + " -t tiled -W 16 -H 16 --warmup 0";
-  const double first = stored_photons_per_frame(tiled + " --frames 1 --at 0");
-  const double second = stored_photons_per_frame(tiled + " --frames 1 --at 0.0333333351");
+  // the photons of the two poses, each rendered still as the same frame (0, or 1 after a warm-up
+  // frame).
+  const std::string tiled = scene + " -t tiled -W 16 -H 16";
+  const double first = stored_photons_per_frame(tiled + " --warmup 0 --frames 1 --at 0");
+  const double second =
+      stored_photons_per_frame(tiled + " --warmup 1 --frames 1 --at 0.0333333351");
   ASSERT_NE(first, second) << "the two poses must differ for the test to see the animation";
-  const double animated = stored_photons_per_frame(tiled + " --frames 2 --at 0 --animate");
+  const double animated =
+      stored_photons_per_frame(tiled + " --warmup 0 --frames 2 --at 0 --animate");
   EXPECT_EQ(animated, 0.5 * (first + second));
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
@@ -21,11 +22,15 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_int("bounces", &s.bounces, -1, kMaxPhotonDepth,
                   "photon bounces (-1: until Russian roulette ends the path)");
   params_.add_int("lowres", &s.lowres, 1, 16, "indirect at 1/lowres of the width and height");
+  params_.add_int("motion_lowres", &s.motion_lowres, 1, 16,
+                  "lowres of frames that gather the kept passes after a camera move");
   params_.add_int("tile", &s.tile, 1, 256, "screen tile size, pixels");
   params_.add_int("gather", &s.gather, 0, 1, "density estimation: 0 screen tiles, 1 hash grid");
   params_.add_float("slab", &s.slab, 0.0, 1.0, "tangent slab half-thickness / radius");
   params_.add_bool("leak_guard", &s.leak_guard, "clearance rays stop light through thin walls");
   params_.add_float("alpha", &s.alpha, 0.01, 1.0, "radius reduction of passes at rest");
+  params_.add_int("history_passes", &s.history_passes, 1, 64,
+                  "photon passes kept and gathered again after a camera move");
   params_.add_float("edge_normal", &s.edge_normal, -1.0, 1.0, "edge test: normal agreement");
   params_.add_float("edge_distance", &s.edge_distance, 0.0, 1.0,
                     "edge test: position gap / scene diagonal");
@@ -65,12 +70,34 @@ std::vector<std::string> TiledPhotonMapping::still_defaults() const {
   return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
 }
 
-TiledGatherView TiledPhotonMapping::gather_view(const GBuffer& g, float radius) const {
+const PhotonBuffer& TiledPhotonMapping::photons() const {
+  static const PhotonBuffer none;
+  return history_.size() > 0 ? history_.newest() : none;
+}
+
+float TiledPhotonMapping::progressive_radius(float full_radius, float alpha, uint32_t passes) {
+  float radius2 = full_radius * full_radius;
+  for (uint32_t i = 1; i < passes; ++i) radius2 *= (float(i - 1) + alpha) / float(i);
+  return std::sqrt(radius2);
+}
+
+float TiledPhotonMapping::union_radius(float full_radius, float alpha, uint32_t passes) {
+  double sum = 0.0;
+  float radius2 = full_radius * full_radius;
+  for (uint32_t i = 1; i <= passes; ++i) {
+    sum += radius2;
+    radius2 *= (float(i - 1) + alpha) / float(i);
+  }
+  return float(std::sqrt(sum / double(std::max(passes, 1u))));
+}
+
+TiledGatherView TiledPhotonMapping::gather_view(const GBuffer& g, const PhotonBuffer& photons,
+                                                const GatherPlan& plan) const {
   TiledGatherView v;
   v.g = g.view();
-  v.photons = photons_.view();
-  v.settings = {radius, slab_, settings_.leak_guard};
-  v.use_grid = settings_.gather != 0;
+  v.photons = photons.view();
+  v.settings = {plan.radius, settings_.slab * plan.radius, settings_.leak_guard};
+  v.use_grid = plan.grid;
   if (v.use_grid)
     v.grid = grid_.view();
   else
@@ -78,11 +105,19 @@ TiledGatherView TiledPhotonMapping::gather_view(const GBuffer& g, float radius) 
   return v;
 }
 
-void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& out) {
+void TiledPhotonMapping::estimate(const FrameContext& c, const PhotonBuffer& photons,
+                                  const GatherPlan& plan, Image& out) {
   const GBuffer& g = c.gbuffer;
-  const TiledGatherView gather = gather_view(g, radius);
+  {
+    ScopedStage stage(c.times, plan.grid ? "indirect/hash grid" : "indirect/tile bins");
+    if (plan.grid)
+      grid_.build(photons.position, plan.radius);
+    else
+      bins_.build(g, c.camera, photons, plan.radius, settings_.tile);
+  }
+  const TiledGatherView gather = gather_view(g, photons, plan);
   const ImageView image = out.view();
-  const int f = settings_.lowres;
+  const int f = plan.lowres;
   if (f == 1) {
     parallel_for_2d(g.width, g.height,
                     [&](int x, int y) { image.at(x, y) = gather_pixel(gather, x, y); });
@@ -133,58 +168,77 @@ void TiledPhotonMapping::estimate(const FrameContext& c, float radius, Image& ou
 }
 
 // Photons depend on the scene, not the pixels: they are traced (and their clearances found) in
-// prepare, before the G-buffer. A change, or accumulation off, restarts at the full radius.
+// prepare, before the G-buffer. They stay valid while only the camera moves; any other change,
+// or accumulation off, drops them and restarts at the full radius.
 void TiledPhotonMapping::prepare(const PrepareContext& c) {
   diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
-  const float base = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
-  if (!c.continue_accumulation() || passes_ == 0) {
+  full_radius_ = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
+  const size_t capacity = size_t(settings_.history_passes);
+  if (!c.accumulate || c.change.world_changed() || history_.capacity() != capacity) {
+    history_.reset(capacity);
     passes_ = 0;
-    radius2_ = base * base;
   }
-  const float radius = std::sqrt(radius2_);
-  last_radius_ = radius;
-  slab_ = settings_.slab * radius;
+  // The sample pattern follows the frame index, so that frames are independent without
+  // accumulation and no two passes of an estimate share photons.
+  PhotonBuffer& photons = history_.add(c.frame_index);
   {
     ScopedStage stage(c.times, "prepare/photon trace");
     PhotonTraceSettings ts;
     ts.paths = uint32_t(settings_.photons);
     ts.max_bounces = settings_.bounces;
     ts.seed = uint32_t(settings_.seed);
-    ts.pass = passes_;
-    const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons_);
+    ts.pass = c.frame_index;
+    const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons);
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
   }
   if (settings_.leak_guard) {
+    // Clearances out to the full radius serve every later, smaller radius: a gather within
+    // radius r only asks whether the free distance reaches below r.
     ScopedStage stage(c.times, "prepare/clearance");
-    c.counters.rays += compute_photon_clearance(c.tracer, radius, photons_);
+    c.counters.rays += compute_photon_clearance(c.tracer, full_radius_, photons);
   } else {
-    photons_.clearance.clear();
+    photons.clearance.clear();
+    photons.min_clearance.clear();
   }
 }
 
 void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
-  // No pass yet: prepare restarted, so the average starts afresh.
-  if (passes_ == 0 || accumulated_.width() != out.width() || accumulated_.height() != out.height())
-    accumulated_ = Image(out.width(), out.height());
-  const float radius = last_radius_;
-  {
-    ScopedStage stage(c.times, settings_.gather == 0 ? "indirect/tile bins" : "indirect/hash grid");
-    if (settings_.gather == 0)
-      bins_.build(c.gbuffer, c.camera, photons_, radius, settings_.tile);
-    else
-      grid_.build(photons_.position, radius);
-  }
+  // The per-pixel sum is rebuilt from the photons after a restart or a camera move (new pixels,
+  // same world), and grows by the new pass otherwise.
+  const bool rebuild = passes_ == 0 || c.change.camera || accumulated_.width() != out.width() ||
+                       accumulated_.height() != out.height();
   if (pass_estimate_.width() != out.width() || pass_estimate_.height() != out.height())
     pass_estimate_ = Image(out.width(), out.height());
-  estimate(c, radius, pass_estimate_);
+  passes_ = rebuild ? uint32_t(history_.size()) : passes_ + 1;
 
   // Progressive photon mapping as the average of independent passes whose radius shrinks
-  // (Knaus and Zwicker 2011): r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1).
-  ++passes_;
-  radius2_ *= (float(passes_ - 1) + settings_.alpha) / float(passes_);
+  // (Knaus and Zwicker 2011). Kept passes gathered together share one radius, and their summed
+  // flux gives the sum of their estimates.
+  GatherPlan plan{progressive_radius(full_radius_, settings_.alpha, passes_), settings_.lowres,
+                  settings_.gather != 0};
+  const PhotonBuffer* photons = &history_.newest();
+  if (rebuild && passes_ > 1) {
+    ScopedStage stage(c.times, "indirect/photon union");
+    history_.concatenate(union_);
+    photons = &union_;
+    // Several passes' photons per gather: fewer gather points and the hash grid, whose build
+    // costs next to nothing, keep the frame's cost bounded (README.md, "Photons kept across
+    // camera moves").
+    plan = {union_radius(full_radius_, settings_.alpha, passes_), settings_.motion_lowres, true};
+  }
+  last_radius_ = plan.radius;
+  estimate(c, *photons, plan, pass_estimate_);
+
   const float inv_passes = 1.0f / float(passes_);
+  if (rebuild) {
+    std::swap(accumulated_, pass_estimate_);
+    parallel_for(
+        out.pixel_count(),
+        [&](size_t i) { out.pixels()[i] = accumulated_.pixels()[i] * inv_passes; }, 4096);
+    return;
+  }
   parallel_for(
       out.pixel_count(),
       [&](size_t i) {

@@ -8,6 +8,7 @@
 #include "bounce/render/photon_hash_grid.h"
 #include "bounce/render/photon_tracing.h"
 #include "bounce/render/technique.h"
+#include "bounce/techniques/tiled/photon_history.h"
 #include "bounce/techniques/tiled/tile_bins.h"
 #include "bounce/techniques/tiled/tiled_kernels.h"
 
@@ -19,11 +20,13 @@ struct TiledSettings {
   float radius_rel = 0.03f;  // gather radius relative to the scene's bounding-box diagonal
   int bounces = -1;          // -1: multi-bounce ended by Russian roulette; B: bounces 1..B
   int lowres = 2;            // indirect estimated at 1/lowres width and height (1: full)
+  int motion_lowres = 4;     // the same, in frames that gather the kept passes after a camera move
   int tile = 8;              // screen tile size of the tile gather, pixels
   int gather = 0;     // density estimation: 0 screen tiles (the seed's; faster here), 1 hash grid
   float slab = 0.1f;  // half-thickness of the tangent slab, relative to the radius
   bool leak_guard = true;       // per-photon clearance rays against light through thin walls
   float alpha = 2.0f / 3.0f;    // radius reduction of passes at rest (Knaus and Zwicker 2011)
+  int history_passes = 8;       // photon passes kept and gathered again after a camera move
   float edge_normal = 0.99f;    // re-estimate at full resolution below this normal agreement
   float edge_distance = 0.01f;  // ... or beyond this position gap, relative to the diagonal
   bool show_edges = false;      // debug view: re-estimated pixels in yellow
@@ -34,21 +37,38 @@ class TiledPhotonMapping final : public Technique {
  public:
   TiledPhotonMapping();
   std::string name() const override { return "tiled"; }
-  // At rest (FrameSettings::accumulate) passes with shrinking radii average into one estimate.
+  // With accumulation (FrameSettings::accumulate) passes with shrinking radii average into one
+  // estimate, at rest and across camera moves.
   IndirectHistory indirect_history() const override { return IndirectHistory::kAccumulated; }
   std::vector<TechniqueOption> options() const override;
   std::vector<std::string> still_defaults() const override;
-  // Traces this frame's photons and their clearances (world space, before the G-buffer).
+  // Traces this frame's photons and their clearances (world space, before the G-buffer); keeps
+  // the passes before it while only the camera moves, drops them on any other change.
   void prepare(const PrepareContext& context) override;
-  // Bins the photons for the G-buffer's pixels, gathers and averages the passes at rest.
+  // Bins the photons for the G-buffer's pixels, gathers them and averages the passes: the new
+  // pass at rest, every pass still held after a camera move.
   void indirect(const FrameContext& context, Image& out) override;
 
   TiledSettings& settings() { return settings_; }
-  // Passes averaged into the current image (1 after any change or without accumulation).
+  const TiledSettings& settings() const { return settings_; }
+  // Passes averaged into the current image (1 after a change of the world or without
+  // accumulation; after a camera move, the passes still held).
   uint32_t passes() const { return passes_; }
-  // The gather radius of the last pass, in scene units.
+  // The gather radius of the last frame, in scene units.
   float last_radius() const { return last_radius_; }
-  const PhotonBuffer& photons() const { return photons_; }
+  // The gather radius of an estimate made of `passes` passes: the full radius shrunk as
+  // r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1).
+  static float progressive_radius(float full_radius, float alpha, uint32_t passes);
+  // The radius at which `passes` kept passes are gathered together: its disc is the mean of their
+  // progressive discs, so the union is at least as good as the average of their estimates
+  // (README.md, "Photons kept across camera moves").
+  static float union_radius(float full_radius, float alpha, uint32_t passes);
+  // The full radius (of the first pass) in the last frame's scene.
+  float full_radius() const { return full_radius_; }
+  // The passes kept for reuse; the newest is this frame's.
+  const PhotonHistory& history() const { return history_; }
+  // This frame's photons (none before the first frame).
+  const PhotonBuffer& photons() const;
   const TileBins& tile_bins() const { return bins_; }
   size_t edge_pixels() const { return edge_pixels_; }
 
@@ -58,23 +78,31 @@ class TiledPhotonMapping final : public Technique {
     std::vector<vec3> radiance, normal, position;
     std::vector<uint8_t> valid;
   };
-  void estimate(const FrameContext& context, float radius, Image& estimate);
-  TiledGatherView gather_view(const GBuffer& g, float radius) const;
+  // How a frame gathers: a pass, or the kept passes after a camera move.
+  struct GatherPlan {
+    float radius = 0.0f;
+    int lowres = 1;
+    bool grid = false;  // the hash grid, else the screen tiles
+  };
+  void estimate(const FrameContext& context, const PhotonBuffer& photons, const GatherPlan& plan,
+                Image& estimate);
+  TiledGatherView gather_view(const GBuffer& g, const PhotonBuffer& photons,
+                              const GatherPlan& plan) const;
 
   TiledSettings settings_;
 
   PhotonTracer tracer_;
-  PhotonBuffer photons_;
+  PhotonHistory history_;
+  PhotonBuffer union_;  // the passes held, in one buffer, for the gather after a camera move
   TileBins bins_;
   PhotonHashGrid grid_;
   LowRes low_;
   Image pass_estimate_;
-  Image accumulated_;
-  uint32_t passes_ = 0;
-  float radius2_ = 0.0f;  // squared radius of the next pass
+  Image accumulated_;    // the sum of the passes' estimates
+  uint32_t passes_ = 0;  // in accumulated_; 0: restart at the next frame
+  float full_radius_ = 0.0f;
   float last_radius_ = 0.0f;
   float diagonal_ = 1.0f;
-  float slab_ = 0.0f;
   size_t edge_pixels_ = 0;
 };
 
