@@ -42,6 +42,7 @@ struct AtrousPass {
   int height = 0;
   int step = 1;  // 2^iteration
   float sigma_luminance = 0.0f;
+  float sigma_luminance_indirect = 0.0f;
   float sigma_normal = 0.0f;
   float sigma_depth = 0.0f;
 };
@@ -172,7 +173,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
       kLog2e / (p.sigma_luminance * std::sqrt(vd * inv_vw) + kLuminanceEpsilon);
   if constexpr (kIndirect)
     geometry[(kScales + 1) * stride] =
-        kLog2e / (p.sigma_luminance * std::sqrt(vi * inv_vw) + kLuminanceEpsilon);
+        kLog2e / (p.sigma_luminance_indirect * std::sqrt(vi * inv_vw) + kLuminanceEpsilon);
 }
 
 // One light's pass at pixel x (light 0 direct, 1 indirect), with what atrous_geometry wrote.

@@ -221,6 +221,8 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
                   "a-trous passes, with steps 1, 2, 4, ... pixels");
   params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
                     "luminance edge-stopping, in standard deviations of the estimate");
+  params_.add_float("sigma_luminance_indirect", &s.sigma_luminance_indirect, 0.01, 1e6,
+                    "the same for indirect light (photon blotches are wide: large)");
   params_.add_float("sigma_normal", &s.sigma_normal, 1.0, 1024.0,
                     "normal edge-stopping exponent on the cosine between normals");
   params_.add_float("sigma_depth", &s.sigma_depth, 0.01, 1000.0,
@@ -383,6 +385,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         pass.height = h;
         pass.step = 1 << k;
         pass.sigma_luminance = s.sigma_luminance;
+        pass.sigma_luminance_indirect = s.sigma_luminance_indirect;
         pass.sigma_normal = s.sigma_normal;
         pass.sigma_depth = s.sigma_depth;
         // The last pass's variance would guide nothing.
