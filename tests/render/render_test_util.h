@@ -26,6 +26,7 @@ struct Job {
   // Frames at rest average in the pipeline (FrameSettings::accumulate); off, each frame stands
   // alone and the images are the last frame's.
   bool accumulate = true;
+  bool denoise = false;  // the denoiser stage with its defaults (FrameSettings::denoise)
   uint32_t seed = 0;
   int threads = 0;  // 0: every core
 };
@@ -51,6 +52,7 @@ inline Images render(const Scene& scene, const Job& job) {
   settings.jitter = job.jitter;
   settings.seed = job.seed;
   settings.accumulate = job.accumulate;
+  settings.denoise = job.denoise;
   const Frame* f = nullptr;
   for (int k = 0; k < job.frames; ++k) f = &renderer.render(scene.camera, settings);
   return {f->direct, f->indirect, f->color};

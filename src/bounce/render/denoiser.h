@@ -31,12 +31,12 @@ namespace bounce {
 struct DenoiseSettings {
   bool temporal = true;          // temporal accumulation through reprojection
   bool spatial = true;           // the a-trous filter
-  int atrous_iterations = 4;     // a-trous passes (step 1, 2, 4, ...)
+  int atrous_iterations = 5;     // a-trous passes (step 1, 2, 4, ...)
   float sigma_luminance = 4.0f;  // luminance edge-stopping, in standard deviations
   // The same for indirect light. Photon gathers leave blotches as wide as the gather radius,
   // which a neighbourhood's variance cannot tell from signal: indirect light is filtered by
   // geometry almost alone.
-  float sigma_luminance_indirect = 64.0f;
+  float sigma_luminance_indirect = 1.0e5f;
   float sigma_normal = 128.0f;    // normal edge-stopping exponent
   float sigma_depth = 1.0f;       // depth edge-stopping, relative to the local depth gradient
   int history_max = 32;           // frames of history a pixel keeps while anything moves
