@@ -194,8 +194,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const*
 // writes the next history and the filter's inputs. alpha = 1 / (n + 1) with n the (capped)
 // history length: a plain running average while n is below the cap. Pixels without a surface
 // pass their light through, with no history. Branch-free, so the CPU's row loop vectorises;
-// kIndirect and kRest (update the rest averages) are the pass's switches. Returns whether the
-// pixel's history is too short for its own variance (the spatial estimate then stands in).
+// kIndirect and kRest (update the rest averages: at rest and at a reset) are the pass's switches.
+// Returns whether the pixel's history is too short for its own variance (the spatial estimate then
+// stands in).
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                     const Reprojected& r) {
