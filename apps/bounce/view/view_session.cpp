@@ -31,7 +31,8 @@ ViewSession::ViewSession(const ViewOptions& options)
   exposure_ = options.frame.exposure_ev;
   denoise_ = options.frame.denoise;
   camera_ = FlyCamera(scene_.camera);
-  playing_ = !scene_.animation.empty();
+  // A camera path alone is an animation to play too.
+  playing_ = !scene_.animation.empty() || !scene_.animation.camera_path.empty();
   time_ = options.frame.at;
 }
 
@@ -107,7 +108,7 @@ void ViewSession::place_flashlight() {
 
 const Frame& ViewSession::render(int out_w, int out_h, double dt) {
   // Scene update: the animation clock, the camera path, the flashlight.
-  if (playing_ && !scene_.animation.empty()) {
+  if (playing_ && (!scene_.animation.empty() || !scene_.animation.camera_path.empty())) {
     time_ += float(dt);
     time_set_ = true;
   }
