@@ -532,12 +532,15 @@ TEST(Denoiser, ResultDoesNotDependOnTheThreadCount) {
 TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
   Denoiser d;
   std::set<std::string> names;
-  for (const Param& p : d.params().all()) names.insert(p.name);
-  EXPECT_EQ(names,
-            (std::set<std::string>{"temporal", "spatial", "atrous_iterations", "sigma_luminance",
-                                   "sigma_luminance_indirect", "sigma_normal", "sigma_depth",
-                                   "history_max", "accumulated_history", "clip_gamma",
-                                   "depth_tolerance", "normal_tolerance"}));
+  for (const Param& p : d.params().all()) {
+    names.insert(p.name);
+    EXPECT_NE(p.name.rfind("denoise", 0), 0u) << p.name << ": no stage prefix, every name is short";
+    EXPECT_FALSE(p.help.empty()) << p.name;
+  }
+  for (const char* name : {"temporal", "spatial", "atrous_iterations", "sigma_luminance",
+                           "sigma_normal", "sigma_depth", "history_max", "accumulated_history",
+                           "clip_gamma", "depth_tolerance", "normal_tolerance"})
+    EXPECT_EQ(names.count(name), 1u) << name;
   d.params().set("atrous_iterations", "2");
   d.params().set("sigma_luminance", "8");
   d.params().set("spatial", "off");
