@@ -5,6 +5,10 @@ Experiments:
   grid        Table 6.1: photon paths x radius, one photon bounce, against a one-bounce
               path-traced reference; frame time (bench) and single-frame MSE / MSSIM (compare)
   default     the multi-bounce default against a full reference; direct light alone
+
+The frames and timings are the raw pipeline's (--no-denoise), as the thesis measured them; the
+grid and the default comparison also score each single frame with the denoiser on (the CLI's
+default), in columns named *_denoised.
   budget      section 6.1.1: the best grid cell by MSE and by MSSIM within a frame-time budget
   complexity  section 6.2: cubes:N, per-stage frame time and BVH build time against triangles
 
@@ -62,6 +66,10 @@ QUICK = Config(size=48, ref_spp=64, frames=5, warmup=1,
                paths=[500, 5000], radii=[4.0],
                cubes=[1, 100], cubes_size=48, cubes_frames=3,
                budget_ms=33.0, baseline=(500, 4.0))
+
+
+# The raw pipeline: no temporal reuse or denoising (the CLI denoises by default).
+RAW = ["--no-denoise"]
 
 
 # ---------------------------------------------------------------- running the CLI
@@ -166,17 +174,23 @@ def make_references(b, cfg, out):
 def grid_cell(b, cfg, out, paths, radius):
     name = f"p{paths}_r{radius:g}"
     args = one_bounce_args(paths, radius)
-    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, args, out / "json" / f"{name}.json")
+    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, [*args, *RAW],
+                out / "json" / f"{name}.json")
+    ref = out / "reference_1bounce.png"
     img = out / "grid" / f"{name}.png"
-    b.render(img, cfg.size, ["--spp", "1", *args])
-    m = b.compare(out / "reference_1bounce.png", img, out / "grid" / f"{name}_error.png")
+    b.render(img, cfg.size, ["--spp", "1", *args, *RAW])
+    m = b.compare(ref, img, out / "grid" / f"{name}_error.png")
+    img_dn = out / "grid" / f"{name}_denoised.png"
+    b.render(img_dn, cfg.size, ["--spp", "1", *args])
+    md = b.compare(ref, img_dn, out / "grid" / f"{name}_denoised_error.png")
     total, total_sd = stage(j, "total")
     ind, ind_sd = technique_stages(j)
     return {"paths": paths, "radius_pct": radius,
             "stored": j["photons"]["stored_per_frame"],
             "frame_ms": total, "frame_sd_ms": total_sd,
             "indirect_ms": ind, "indirect_sd_ms": ind_sd,
-            "mse": m["mse"], "nrmse": m["nrmse"], "mssim": m["mssim"]}
+            "mse": m["mse"], "nrmse": m["nrmse"], "mssim": m["mssim"],
+            "mse_denoised": md["mse"], "mssim_denoised": md["mssim"]}
 
 
 def run_grid(b, cfg, out):
@@ -187,9 +201,14 @@ def run_grid(b, cfg, out):
 def run_default(b, cfg, out):
     """The multi-bounce default (one frame and converged) and direct light, against both refs."""
     print("default technique and direct light", flush=True)
-    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, [], out / "json" / "default.json")
-    jd = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, ["-t", "direct"],
+    j = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, RAW, out / "json" / "default.json")
+    jd = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, ["-t", "direct", *RAW],
                  out / "json" / "direct.json")
+    # The same two with the denoiser: its cost beside the raw frame.
+    j_dn = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, [],
+                   out / "json" / "default_denoised.json")
+    jd_dn = b.bench("cornell", cfg.size, cfg.frames, cfg.warmup, ["-t", "direct"],
+                    out / "json" / "direct_denoised.json")
     images = {
         "tiled_1frame": ["--spp", "1", "--photons", "2000"],
         "tiled_converged": [],      # render's still defaults: 20,000 paths x 16 passes
@@ -198,16 +217,23 @@ def run_default(b, cfg, out):
     rows = []
     for name, args in images.items():
         t0 = time.time()
-        b.render(out / f"{name}.png", cfg.size, args)
+        b.render(out / f"{name}.png", cfg.size, [*args, *RAW])
         secs = time.time() - t0
+        b.render(out / f"{name}_denoised.png", cfg.size, args)
+        timed = name != "tiled_converged"
+        bench_j, bench_dn = (jd, jd_dn) if name == "direct" else (j, j_dn)
         for ref in ("full", "1bounce"):
             m = b.compare(out / f"reference_{ref}.png", out / f"{name}.png",
                           out / f"{name}_vs_{ref}_error.png")
-            bench_j = jd if name == "direct" else j
+            md = b.compare(out / f"reference_{ref}.png", out / f"{name}_denoised.png",
+                           out / f"{name}_denoised_vs_{ref}_error.png")
             rows.append({"image": name, "reference": ref,
-                         "frame_ms": stage(bench_j, "total")[0] if name != "tiled_converged" else float("nan"),
+                         "frame_ms": stage(bench_j, "total")[0] if timed else float("nan"),
+                         "frame_ms_denoised": stage(bench_dn, "total")[0] if timed else float("nan"),
+                         "denoise_ms": stage(bench_dn, "denoise")[0] if timed else float("nan"),
                          "render_s": secs,
-                         "mse": m["mse"], "nrmse": m["nrmse"], "mssim": m["mssim"]})
+                         "mse": m["mse"], "nrmse": m["nrmse"], "mssim": m["mssim"],
+                         "mse_denoised": md["mse"], "mssim_denoised": md["mssim"]})
     return rows, j
 
 
@@ -228,7 +254,7 @@ def run_complexity(b, cfg, out):
         scene = f"cubes:{n}"
         tris, bvh_mib, bvh_ms = b.info(scene)
         j = b.bench(scene, cfg.cubes_size, cfg.cubes_frames, min(cfg.warmup, 3),
-                    [], out / "json" / f"cubes{n}.json")
+                    RAW, out / "json" / f"cubes{n}.json")
         row = {"cubes": n, "triangles": tris, "bvh_build_ms": bvh_ms, "bvh_mib": bvh_mib}
         for s in j["stages"] + [j["total"]]:
             row[s["name"] + "_ms"] = s["mean_ms"]
@@ -250,11 +276,18 @@ def check_numbers(grid, default_rows, complexity, cfg):
         bad.append(f"grid has {len(grid)} rows, expected {want}")
     for r in grid + default_rows:
         for k, v in r.items():
-            if isinstance(v, float) and math.isnan(v) and k != "frame_ms":
+            if isinstance(v, float) and math.isnan(v) and k not in ("frame_ms", "frame_ms_denoised",
+                                                                     "denoise_ms"):
                 bad.append(f"NaN {k} in {r}")
     for r in grid:
         if not (r["frame_ms"] > 0 and r["stored"] > 0 and 0 < r["mssim"] <= 1):
             bad.append(f"implausible grid row {r}")
+    for r in grid + default_rows:
+        if not (0 < r["mssim_denoised"] <= 1 and r["mse_denoised"] >= 0):
+            bad.append(f"implausible denoised scores in {r}")
+    for r in default_rows:
+        if r["image"] != "tiled_converged" and not r["denoise_ms"] > 0:
+            bad.append(f"no denoise stage timed for {r['image']}")
     for radius in cfg.radii:
         col = sorted((r for r in grid if r["radius_pct"] == radius), key=lambda r: r["paths"])
         if len(col) >= 2 and not col[-1]["mse"] < col[0]["mse"]:
@@ -378,7 +411,8 @@ def write_index(out, cfg, grid, default_rows, budgets, complexity, meta):
          figure("reference_full.png", "reference, all bounces"),
          figure("tiled_converged.png", "tiled, converged still"),
          figure("tiled_1frame.png", "tiled, one frame (default)"),
-         figure("direct.png", "direct light only"), "<br>",
+         figure("direct.png", "direct light only"),
+         figure("tiled_1frame_denoised.png", "tiled, one frame, denoised"), "<br>",
          figure("reference_1bounce.png", "reference, one bounce"),
          figure("tiled_converged_vs_full_error.png", "error: converged tiled vs full"),
          figure("tiled_1frame_vs_full_error.png", "error: one tiled frame vs full"),
