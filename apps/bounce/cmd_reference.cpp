@@ -1,6 +1,5 @@
 // bounce reference: a converged path-traced image (the ground truth), with progress and ETA.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cctype>
 #include <cmath>
@@ -39,34 +38,6 @@ std::string default_output(const std::string& scene) {
   return "out/" + scene_stem(scene) + "-reference.exr";
 }
 
-// Progress on stderr: rewritten in place on a terminal, one line per tenth of the work otherwise.
-class ProgressLine {
- public:
-  ProgressLine() : terminal_(isatty(fileno(stderr)) != 0) {}
-  void update(const ReferenceProgress& p) {
-    const int percent = int(std::floor(100.0 * p.fraction));
-    const std::string text =
-        fmt::format("reference: {:3}% ({}/{} spp), elapsed {}, ETA {}", percent, p.spp_done,
-                    p.spp_target, clock_text(p.elapsed_s), clock_text(p.eta_s));
-    if (terminal_) {
-      fmt::print(stderr, "\r{:<72}", text);
-      std::fflush(stderr);
-      dirty_ = true;
-    } else if (percent / 10 > last_tenth_) {
-      last_tenth_ = percent / 10;
-      fmt::print(stderr, "{}\n", text);
-    }
-  }
-  void finish() {
-    if (dirty_) fmt::print(stderr, "\n");
-  }
-
- private:
-  bool terminal_;
-  bool dirty_ = false;
-  int last_tenth_ = -1;
-};
-
 void run_reference(const ReferenceOptions& o) {
   const ThreadLimit limit(o.threads);
   const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
@@ -89,9 +60,18 @@ void run_reference(const ReferenceOptions& o) {
   const std::filesystem::path parent = std::filesystem::path(out).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
 
+  // Progress: in place on a terminal, every 10% in a log.
   ProgressLine line;
-  const ReferenceResult r = render_reference(scene, *tracer, scene.camera, settings,
-                                             [&](const ReferenceProgress& p) { line.update(p); });
+  int last_tenth = -1;
+  const auto progress = [&](const ReferenceProgress& p) {
+    const int percent = int(std::floor(100.0 * p.fraction));
+    const bool due = percent / 10 > last_tenth;
+    if (due) last_tenth = percent / 10;
+    line.show(fmt::format("reference: {:3}% ({}/{} spp), elapsed {}, ETA {}", percent, p.spp_done,
+                          p.spp_target, clock_text(p.elapsed_s), clock_text(p.eta_s)),
+              due);
+  };
+  const ReferenceResult r = render_reference(scene, *tracer, scene.camera, settings, progress);
   line.finish();
   save_image(out, r.image, o.exposure_ev);
   const std::string bounces =

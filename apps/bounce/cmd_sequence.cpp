@@ -2,7 +2,6 @@
 // through one Renderer (all temporal state kept) at a fixed rate, the displayed frames written as
 // numbered images. This is how quality in motion is measured and walkthrough videos are made.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -39,42 +38,6 @@ std::string default_pattern(const std::string& scene) {
   for (char c : scene_stem(scene)) stem += c == '%' ? std::string("%%") : std::string(1, c);
   return "out/sequence/" + stem + "_%04d.png";
 }
-
-// Progress on stderr: rewritten in place on a terminal; otherwise a plain line at most once a
-// second, so logs stay short.
-class ProgressLine {
- public:
-  ProgressLine() : terminal_(isatty(fileno(stderr)) != 0) {}
-  ~ProgressLine() {
-    if (dirty_) fmt::print(stderr, "\n");
-  }
-  ProgressLine(const ProgressLine&) = delete;
-  ProgressLine& operator=(const ProgressLine&) = delete;
-
-  void update(int64_t done, int64_t total, double t, double elapsed_s) {
-    const bool last = done == total;
-    if (!terminal_ && !last && elapsed_s - printed_s_ < 1.0) return;
-    if (!terminal_ && last && printed_s_ == 0.0) return;  // a short run needs no progress
-    printed_s_ = elapsed_s;
-    const double per_frame_s = elapsed_s / double(done);
-    const std::string text =
-        fmt::format("sequence: frame {}/{} (t {:.3f} s), {:.1f} ms per frame, elapsed {}, ETA {}",
-                    done, total, t, 1000.0 * per_frame_s, clock_text(elapsed_s),
-                    clock_text(per_frame_s * double(total - done)));
-    if (terminal_) {
-      fmt::print(stderr, "\r{:<80}", text);
-      std::fflush(stderr);
-      dirty_ = true;
-    } else {
-      fmt::print(stderr, "{}\n", text);
-    }
-  }
-
- private:
-  bool terminal_;
-  bool dirty_ = false;
-  double printed_s_ = 0.0;
-};
 
 void create_directory(const FramePattern& pattern) {
   if (pattern.directory().empty()) return;
@@ -117,7 +80,10 @@ void run_sequence(const SequenceOptions& o) {
   int64_t written = 0;
   const Stopwatch wall;
   {
+    // Progress: in place on a terminal; in a log at most once a second, and a last line only
+    // after an earlier one (a short run needs none).
     ProgressLine progress;
+    double printed_s = 0.0;
     for (int64_t k = 0; k < range.count; ++k) {
       const double t = range.time(k);
       if (!scene.animation.empty()) renderer.animate(scene, float(t));
@@ -141,7 +107,16 @@ void run_sequence(const SequenceOptions& o) {
         record["stages"] = std::move(stages);
         frames.push_back(std::move(record));
       }
-      progress.update(k + 1, range.count, t, wall.elapsed_ms() / 1000.0);
+      const int64_t done = k + 1;
+      const double elapsed_s = wall.elapsed_ms() / 1000.0;
+      const bool due = done == range.count ? printed_s > 0.0 : elapsed_s - printed_s >= 1.0;
+      if (due) printed_s = elapsed_s;
+      const double per_frame_s = elapsed_s / double(done);
+      progress.show(
+          fmt::format("sequence: frame {}/{} (t {:.3f} s), {:.1f} ms per frame, elapsed {}, ETA {}",
+                      done, range.count, t, 1000.0 * per_frame_s, clock_text(elapsed_s),
+                      clock_text(per_frame_s * double(range.count - done))),
+          due);
     }
   }
   const double wall_ms = wall.elapsed_ms();

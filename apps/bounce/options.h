@@ -36,8 +36,9 @@ struct FrameOptions {
 // Frame options of the real-time commands (view, bench, sequence): one area-light sample per
 // pixel per frame, since frames average at rest or are seen only for a moment in motion.
 FrameOptions realtime_frame_options();
-// One real-time frame as the viewer shows it: history and accumulation at rest on, sub-pixel
-// jitter only at rest, where jittered frames average into an antialiased image.
+// One real-time frame as the viewer shows it: history and accumulation at rest on; sub-pixel
+// jitter at rest, and in motion too when denoising (the history follows surfaces, so jittered
+// frames average into an antialiased image either way).
 FrameSettings realtime_frame_settings(const FrameOptions& options, bool moving);
 
 // Adds [SCENE] and the frame options to a command.

@@ -126,18 +126,15 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
 
   // The Renderer tells what changed (scene edits, camera, parameters, a new technique); the
   // size is left out because the scaler chooses it from whether anything moves.
-  FrameSettings settings = options_.frame.settings();
-  settings.exposure_ev = exposure_;
-  settings.accumulate = true;
-  settings.denoise = denoise_;
+  FrameOptions frame = options_.frame;
+  frame.exposure_ev = exposure_;
+  frame.denoise = denoise_;
+  moving_ = renderer_->next_change(camera, realtime_frame_settings(frame, true), true).any();
+  FrameSettings settings = realtime_frame_settings(frame, moving_);
   settings.view = view_;
-  moving_ = renderer_->next_change(camera, settings, true).any();
   const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
   settings.width = std::max(1, int(std::lround(out_w * scale)));
   settings.height = std::max(1, int(std::lround(out_h * scale)));
-  // Jittered frames average into an antialiased image: at rest, and in motion too when the
-  // denoiser's history follows surfaces (temporal antialiasing).
-  settings.jitter = denoise_ || !moving_;
   frame_ = &renderer_->render(camera, settings);
 
   last_frame_ms_ = frame_->times.total_ms();

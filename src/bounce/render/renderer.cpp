@@ -58,9 +58,10 @@ SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& set
 HistoryState Renderer::history_state(const SceneChange& change, const FrameSettings& settings,
                                      bool resized) const {
   // History survives what moves surfaces (reprojection follows them) but not what changes what
-  // the image means: a new technique, parameters or size, or the denoiser just switched on.
+  // the image means: a new technique, parameters (switching the denoiser on is one) or size, or
+  // the denoiser's own settings.
   if (!settings.accumulate || change.everything || change.parameters || resized ||
-      !last_denoised_ || !(denoiser_.settings() == last_denoise_))
+      !(denoiser_.settings() == last_denoise_))
     return HistoryState::kReset;
   if (!change.any()) return HistoryState::kRest;
   if (change.camera_only()) return HistoryState::kCameraMoved;
@@ -101,7 +102,6 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   last_width_ = settings.width;
   last_height_ = settings.height;
   last_parameters_ = std::move(parameters);
-  last_denoised_ = settings.denoise;
   last_denoise_ = denoiser_.settings();
   const SceneChange& change = f.change;
   const bool rest = settings.accumulate && !change.any();

@@ -110,7 +110,6 @@ class Renderer {
   Camera last_camera_{};
   CameraRays last_rays_{};  // the last frame's camera for its size: motion vectors start there
   int last_width_ = 0, last_height_ = 0;
-  bool last_denoised_ = false;
   DenoiseSettings last_denoise_;
   int rest_frames_ = 0;  // frames since the last change (Frame::frames_averaged)
   std::vector<std::string> last_parameters_;
