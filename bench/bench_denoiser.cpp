@@ -115,7 +115,8 @@ double relative_rms(const Image& out, const Image& clean) {
 
 // Args: a-trous iterations, history state (1: kCameraMoved in steady state, 0: kReset, 2: kRest;
 // the errors mean nothing at rest, where the frames still move), worker threads, 1 with indirect
-// light or 0 for direct light alone.
+// light or 0 for direct light alone, and the resolution divisor indirect light is filtered at.
+// The iterations count for direct and indirect light alike.
 void BM_Denoiser(benchmark::State& state) {
   const int iterations = int(state.range(0));
   const HistoryState measured = state.range(1) == 0   ? HistoryState::kReset
@@ -125,6 +126,8 @@ void BM_Denoiser(benchmark::State& state) {
   const bool with_indirect = state.range(3) != 0;
   Denoiser denoiser;
   denoiser.settings().atrous_iterations = iterations;
+  denoiser.settings().indirect_iterations = iterations;
+  denoiser.settings().indirect_resolution = int(state.range(4));
   denoiser.settings().spatial = iterations > 0;
   Frame f;
   Pcg32 rng(42);
@@ -157,6 +160,8 @@ void BM_Denoiser(benchmark::State& state) {
   state.counters["temporal_ms"] = total.get("denoise/temporal") / runs;
   state.counters["variance_ms"] = total.get("denoise/variance") / runs;
   state.counters["atrous_ms"] = total.get("denoise/atrous") / runs;
+  state.counters["indirect_ms"] = total.get("denoise/indirect") / runs;
+  state.counters["remodulate_ms"] = total.get("denoise/remodulate") / runs;
   state.counters["raw_direct_err"] = raw_d / runs;
   state.counters["direct_err"] = out_d / runs;
   state.counters["raw_indirect_err"] = raw_i / runs;
@@ -165,14 +170,14 @@ void BM_Denoiser(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Denoiser)
-    ->ArgNames({"iterations", "history", "threads", "indirect"})
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1}, {2}, {1}})
-    ->Args({4, 0, 2, 1})
-    ->Args({4, 2, 2, 1})
-    ->Args({2, 1, 2, 0})
-    ->Args({4, 1, 2, 0})
-    ->Args({4, 1, 1, 1})
-    ->Args({0, 1, 1, 1})
+    ->ArgNames({"iterations", "history", "threads", "indirect", "resolution"})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1}, {2}, {1}, {1, 2}})
+    ->Args({5, 0, 2, 1, 2})
+    ->Args({5, 2, 2, 1, 2})
+    ->Args({2, 1, 2, 0, 2})
+    ->Args({4, 1, 2, 0, 2})
+    ->Args({5, 1, 1, 1, 2})
+    ->Args({0, 1, 1, 1, 2})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();

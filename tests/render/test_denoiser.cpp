@@ -88,25 +88,28 @@ void expect_near_rel(vec3 a, vec3 b, float rel, const std::string& where) {
     EXPECT_NEAR(a[c], b[c], rel * std::max(std::fabs(b[c]), 1e-3f)) << where << " channel " << c;
 }
 
-// Two flat regions of different light split at column 16, with a depth step or a crease (a
+// Two flat regions of different light split at column `edge`, with a depth step or a crease (a
 // normal step) between them: no filtered pixel crosses to the other side, each region's mean
-// stays within 1% and its noise goes down.
-void expect_sharp_edge(const GBuffer& g) {
+// stays within 1% and its noise goes down. `indirect`: the light is indirect light (filtered at
+// the denoiser's default half resolution), else direct light.
+void expect_sharp_edge(const GBuffer& g, int edge = 16, bool indirect = false) {
   const int w = g.width, h = g.height;
   Pcg32 rng(7);
-  const Image light = noisy(w, h, rng, 0.3f, [](int x, int) { return x < 16 ? 1.0f : 4.0f; });
+  const Image light = noisy(w, h, rng, 0.3f, [edge](int x, int) { return x < edge ? 1.0f : 4.0f; });
   Denoiser d;
-  const Image out = run(d, g, HistoryState::kReset, light).direct;
+  const Image constant(w, h, vec3(1.0f));
+  const Image out = indirect ? run(d, g, HistoryState::kReset, constant, &light).indirect
+                             : run(d, g, HistoryState::kReset, light).direct;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       // The inputs lie in [0.7, 1.3] and [2.8, 5.2]: a blurred edge would leave that.
-      if (x < 16)
+      if (x < edge)
         EXPECT_LT(out.at(x, y).x, 1.3f) << x << "," << y;
       else
         EXPECT_GT(out.at(x, y).x, 2.8f) << x << "," << y;
     }
   }
-  for (const auto& [x0, x1] : {std::pair{0, 16}, std::pair{16, w}}) {
+  for (const auto& [x0, x1] : {std::pair{0, edge}, std::pair{edge, w}}) {
     EXPECT_NEAR(mean_x(out, x0, x1, 0, h), mean_x(light, x0, x1, 0, h),
                 0.01f * mean_x(light, x0, x1, 0, h));
     EXPECT_LT(deviation_x(out, x0, x1, 0, h), 0.5f * deviation_x(light, x0, x1, 0, h));
@@ -126,6 +129,90 @@ TEST(Denoiser, AtrousKeepsACreaseSharp) {
   for (int y = 0; y < g.height; ++y)
     for (int x = 16; x < g.width; ++x) g.normal[g.view().index(x, y)] = tilted;
   expect_sharp_edge(g);
+}
+
+// Indirect light is filtered at half resolution: its edges stay as sharp, whether the edge
+// falls between 2x2 blocks (column 16) or through them (column 15).
+TEST(Denoiser, HalfResolutionIndirectLightKeepsADepthStepSharp) {
+  for (int edge : {16, 15}) {
+    GBuffer g = plane(32, 24);
+    for (int y = 0; y < g.height; ++y)
+      for (int x = edge; x < g.width; ++x) g.depth[g.view().index(x, y)] = 2.0f;
+    SCOPED_TRACE(edge);
+    expect_sharp_edge(g, edge, true);
+  }
+}
+
+TEST(Denoiser, HalfResolutionIndirectLightKeepsACreaseSharp) {
+  for (int edge : {16, 15}) {
+    GBuffer g = plane(32, 24);
+    const vec3 tilted = glm::normalize(vec3(1.0f, 0.0f, -1.0f));
+    for (int y = 0; y < g.height; ++y)
+      for (int x = edge; x < g.width; ++x) g.normal[g.view().index(x, y)] = tilted;
+    SCOPED_TRACE(edge);
+    expect_sharp_edge(g, edge, true);
+  }
+}
+
+// Half resolution spreads the same passes twice as far: flat indirect light keeps its mean and
+// loses more of its noise than at full resolution.
+TEST(Denoiser, HalfResolutionIndirectLightReachesFurther) {
+  const GBuffer g = plane(64, 64);
+  Pcg32 rng(5);
+  const Image light = noisy(64, 64, rng, 0.5f, [](int, int) { return 2.0f; });
+  const Image direct(64, 64, vec3(1.0f));
+  float deviation[2];
+  for (int resolution : {1, 2}) {
+    Denoiser d;
+    d.settings().indirect_resolution = resolution;
+    const Image out = run(d, g, HistoryState::kReset, direct, &light).indirect;
+    EXPECT_NEAR(mean_x(out, 0, 64, 0, 64), mean_x(light, 0, 64, 0, 64),
+                0.01f * mean_x(light, 0, 64, 0, 64));
+    deviation[resolution - 1] = deviation_x(out, 8, 56, 8, 56);
+  }
+  EXPECT_LT(deviation[1], 0.7f * deviation[0]);
+  EXPECT_LT(deviation[0], 0.25f * deviation_x(light, 8, 56, 8, 56));
+}
+
+// A column one pixel wide behind its neighbours has no half-resolution texel of its own (each
+// 2x2 block keeps its nearest surface): it keeps its own light rather than borrowing theirs.
+TEST(Denoiser, HalfResolutionKeepsASliverItCannotRepresent) {
+  GBuffer g = plane(32, 16);
+  for (int y = 0; y < 16; ++y) g.depth[g.view().index(15, y)] = 2.0f;
+  const Image light = image_of(32, 16, [](int x, int) { return vec3(x == 15 ? 4.0f : 1.0f); });
+  const Image direct(32, 16, vec3(1.0f));
+  Denoiser d;
+  const Image out = run(d, g, HistoryState::kReset, direct, &light).indirect;
+  for (int y = 0; y < 16; ++y) {
+    EXPECT_NEAR(out.at(15, y).x, 4.0f, 1e-4f) << y;
+    EXPECT_NEAR(out.at(14, y).x, 1.0f, 1e-4f) << y;
+    EXPECT_NEAR(out.at(16, y).x, 1.0f, 1e-4f) << y;
+  }
+}
+
+// An emitter's black face (no albedo, no specular) carries no reflected light: its zeros must
+// not darken the surface around it, for direct or indirect light (the Cornell box's ceiling
+// around its light).
+TEST(Denoiser, SurfacesThatReflectNothingDoNotDarkenTheirNeighbours) {
+  GBuffer g = plane(32, 32);
+  const auto black = [](int x, int y) { return x >= 12 && x < 20 && y >= 12 && y < 20; };
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      if (black(x, y)) g.albedo[g.view().index(x, y)] = vec3(0.0f);
+  const Image light =
+      image_of(32, 32, [&](int x, int y) { return vec3(black(x, y) ? 0.0f : 1.0f); });
+  for (int resolution : {1, 2}) {
+    Denoiser d;
+    d.settings().indirect_resolution = resolution;
+    const Output out = run(d, g, HistoryState::kReset, light, &light);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        if (black(x, y)) continue;
+        EXPECT_NEAR(out.direct.at(x, y).x, 1.0f, 1e-4f) << x << "," << y;
+        EXPECT_NEAR(out.indirect.at(x, y).x, 1.0f, 1e-4f)
+            << x << "," << y << " at 1/" << resolution;
+      }
+  }
 }
 
 TEST(Denoiser, SpatialFilterReducesNoiseOfAFlatRegion) {
@@ -596,12 +683,12 @@ TEST(Denoiser, RecordsItsSubStages) {
   const GBuffer g = plane(4, 4);
   Denoiser d;
   StageTimes times;
-  Image direct(4, 4, vec3(1.0f));
-  d.run({g, HistoryState::kReset, false, times}, direct, nullptr);
+  Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
+  d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
   std::set<std::string> names;
   for (const StageTime& s : times.stages()) names.insert(s.name);
-  EXPECT_EQ(names,
-            (std::set<std::string>{"denoise/temporal", "denoise/variance", "denoise/atrous"}));
+  EXPECT_EQ(names, (std::set<std::string>{"denoise/temporal", "denoise/variance", "denoise/atrous",
+                                          "denoise/indirect", "denoise/remodulate"}));
 }
 
 TEST(Denoiser, RefusesImagesOfAnotherSize) {

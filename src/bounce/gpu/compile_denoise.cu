@@ -1,7 +1,9 @@
 // nvcc check of the denoiser's per-pixel bodies (render/denoise_*.h): the temporal pass,
 // the depth slope, the spatial variance's box sums, both a-trous kernels (3x3 and 5x5, with and
-// without indirect light, with the column tests a GPU pixel needs) and remodulation.
+// without indirect light, with the column tests a GPU pixel needs), the half-resolution
+// indirect light's downsample and upsample, and remodulation.
 #include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_kernels.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoise_variance.h"
@@ -54,6 +56,16 @@ template __global__ void check_atrous<1, true, true>(denoise::AtrousPass);
 template __global__ void check_atrous<1, false, false>(denoise::AtrousPass);
 template __global__ void check_atrous<2, true, true>(denoise::AtrousPass);
 template __global__ void check_atrous<2, false, false>(denoise::AtrousPass);
+
+__global__ void check_downsample(denoise::HalfDownsample pass, int half_height) {
+  int x, y;
+  if (pixel_of(pass.half_width, half_height, x, y)) denoise::downsample_pixel(pass, x, y);
+}
+
+__global__ void check_upsample(denoise::HalfUpsample pass) {
+  int x, y;
+  if (pixel_of(pass.width, pass.height, x, y)) denoise::upsample_pixel(pass, x, y);
+}
 
 __global__ void check_remodulate(denoise::RemodulatePass pass) {
   const size_t i = blockIdx.x * blockDim.x + threadIdx.x;

@@ -115,6 +115,11 @@ BOUNCE_HD inline float luminance_of(vec3 c) {
   return luminance_of(c.x, c.y, c.z);
 }
 
+// Whether a surface reflects any light (some albedo or specular channel above black).
+BOUNCE_HD inline bool reflects_light(vec3 albedo, vec3 f0) {
+  return (max_component(albedo) > kAlbedoFloor) | (max_component(f0) > kAlbedoFloor);
+}
+
 // What light is divided by: the albedo, or 1 where a channel is black (nothing to divide).
 BOUNCE_HD inline vec3 demodulation_factor(vec3 albedo) {
   return {albedo.x > kAlbedoFloor ? albedo.x : 1.0f, albedo.y > kAlbedoFloor ? albedo.y : 1.0f,

@@ -207,10 +207,14 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_
   const vec3 normal = p.g.normal[i];
   const float depth = p.g.depth[i];
   const uint32_t mesh = p.g.mesh[i];
+  // A surface that reflects nothing (an emitter's black face) carries no light to filter: a zero
+  // normal gives it no weight as an a-trous tap, so its zeros do not darken the surface it sits
+  // on (the ceiling around the Cornell box's light).
+  const bool filtered = hit & reflects_light(p.g.albedo[i], p.g.f0[i]);
   p.surface.depth[i] = pick(hit, depth, 0.0f);
-  p.surface.nx[i] = pick(hit, normal.x, 0.0f);
-  p.surface.ny[i] = pick(hit, normal.y, 0.0f);
-  p.surface.nz[i] = pick(hit, normal.z, 0.0f);
+  p.surface.nx[i] = pick(filtered, normal.x, 0.0f);
+  p.surface.ny[i] = pick(filtered, normal.y, 0.0f);
+  p.surface.nz[i] = pick(filtered, normal.z, 0.0f);
   p.surface.object[i] = pick(hit, mesh, kNoPrimitive);
 
   const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];

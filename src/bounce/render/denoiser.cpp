@@ -10,6 +10,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_kernels.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoise_variance.h"
@@ -168,6 +169,40 @@ void atrous_pass(const denoise::AtrousPass& pass, bool indirect, bool variance) 
     variance ? atrous_pass<kRadius, false, true>(pass) : atrous_pass<kRadius, false, false>(pass);
 }
 
+// The depth slope of every pixel (denoise_variance.h) of a w x h depth plane.
+void compute_depth_slope(const float* depth, int w, int h, float* slope) {
+  for_rows(h, [&](int y) {
+    const size_t row = size_t(y) * size_t(w);
+    const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
+    row_loop(
+        w, 1,
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
+        },
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          slope[row + size_t(x)] = denoise::depth_slope_pixel<false>(depth, w, row, up, down, x);
+        });
+  });
+}
+
+// Runs `iterations` a-trous passes from `pass`'s inputs: over direct light alone, or over both
+// lights together (`both`, sharing the geometric weights). outputs(k, pass) points pass k's
+// outputs at their planes. Returns the pass whose inputs are the results.
+template <typename Outputs>
+denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iterations,
+                               const Outputs& outputs) {
+  for (int k = 0; k < iterations; ++k) {
+    outputs(k, pass);
+    pass.step = 1 << k;
+    // The last pass's variance would guide nothing.
+    atrous_pass<1>(pass, both, k + 1 < iterations);
+    pass.direct.in = pass.direct.out;
+    pass.direct.in_var = pass.direct.out_var;
+    pass.indirect.in = pass.indirect.out;
+    pass.indirect.in_var = pass.indirect.out_var;
+  }
+  return pass;
+}
 }  // namespace
 
 struct Denoiser::Buffers {
@@ -187,6 +222,14 @@ struct Denoiser::Buffers {
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
   Planes<2> variance;              // the variance estimate: direct, indirect
   Planes<8> filter[2];             // a-trous ping-pong
+  // Indirect light at half resolution: surfaces, depth slope, light and variance (the
+  // downsampled input, then a ping-pong pair), and the upsampled result.
+  int half_width = 0;
+  int half_height = 0;
+  SurfaceBuffers half_surface;
+  std::vector<float> half_slope;
+  Planes<4> half_light[3];
+  Planes<3> upsampled;
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
 
@@ -209,16 +252,87 @@ struct Denoiser::Buffers {
     motion.assign(n, vec2(0.0f));
     filter[0].resize(n);
     filter[1].resize(n);
+    half_width = (w + 1) / 2;
+    half_height = (h + 1) / 2;
+    const size_t half_n = size_t(half_width) * size_t(half_height);
+    half_surface.resize(half_n);
+    half_slope.assign(half_n, 0.0f);
+    for (auto& planes : half_light) planes.resize(half_n);
+    upsampled.resize(n);
     valid = false;
   }
+
+  // Indirect light filtered at half resolution (denoise_half.h): downsample, `iterations`
+  // a-trous passes, joint-bilateral upsample into `upsampled`. `base` holds the full-resolution
+  // surfaces, and the indirect light's variance in its first slot. Returns the upsampled planes.
+  ConstRgbPlanes filter_half_indirect(const denoise::AtrousPass& base, ConstRgbPlanes light,
+                                      int iterations);
 };
+
+ConstRgbPlanes Denoiser::Buffers::filter_half_indirect(const denoise::AtrousPass& base,
+                                                       ConstRgbPlanes light, int iterations) {
+  Buffers& b = *this;
+  const int w = b.width, h = b.height, hw = b.half_width, hh = b.half_height;
+  denoise::HalfDownsample down;
+  down.surface = base.surface;
+  down.light = light;
+  down.variance = base.direct.in_var;
+  down.width = w;
+  down.height = h;
+  down.half_surface = b.half_surface.view();
+  down.half_light = b.half_light[0].rgb(0);
+  down.half_variance = b.half_light[0][3];
+  down.half_width = hw;
+  for_rows(hh, [&](int y) {
+    for (int x = 0; x < hw; ++x) denoise::downsample_pixel(down, x, y);
+  });
+  compute_depth_slope(b.half_surface.geometry[0], hw, hh, b.half_slope.data());
+  denoise::AtrousPass pass = base;
+  pass.surface = std::as_const(b.half_surface).view();
+  pass.depth_slope = b.half_slope.data();
+  pass.direct = {std::as_const(b.half_light[0]).rgb(0), b.half_light[0][3], {}, nullptr};
+  pass.width = hw;
+  pass.height = hh;
+  const denoise::AtrousPass result =
+      run_atrous(pass, false, iterations, [&](int k, denoise::AtrousPass& p) {
+        Planes<4>& out = b.half_light[1 + (k & 1)];
+        p.direct.out = out.rgb(0);
+        p.direct.out_var = out[3];
+      });
+  denoise::HalfUpsample up;
+  up.surface = base.surface;
+  up.depth_slope = base.depth_slope;
+  up.light = light;
+  up.half_surface = std::as_const(b.half_surface).view();
+  up.half_light = result.direct.in;
+  up.width = w;
+  up.height = h;
+  up.half_width = hw;
+  up.half_height = hh;
+  up.sigma_depth = base.sigma_depth;
+  up.out = b.upsampled.rgb(0);
+  for_rows(h, [&](int y) {
+    const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(up, y);
+    // Columns 0 and w - 1 may read texels outside the half image.
+    row_loop(
+        w, 1,
+        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE { denoise::upsample_pixel<true>(up, rows, x, y); },
+        [&](int x)
+            BOUNCE_DENOISE_LAMBDA_INLINE { denoise::upsample_pixel<false>(up, rows, x, y); });
+  });
+  return std::as_const(b.upsampled).rgb(0);
+}
 
 Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   DenoiseSettings& s = settings_;
   params_.add_bool("temporal", &s.temporal, "accumulate light over frames through reprojection");
   params_.add_bool("spatial", &s.spatial, "edge-avoiding a-trous filter of the light");
   params_.add_int("atrous_iterations", &s.atrous_iterations, 0, 8,
-                  "a-trous passes, with steps 1, 2, 4, ... pixels");
+                  "a-trous passes over direct light, with steps 1, 2, 4, ... pixels");
+  params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
+                  "a-trous passes over indirect light, at its resolution");
+  params_.add_int("indirect_resolution", &s.indirect_resolution, 1, 2,
+                  "indirect light is filtered at 1/N of the width and height (1 or 2)");
   params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
                     "luminance edge-stopping, in standard deviations of the estimate");
   params_.add_float("sigma_luminance_indirect", &s.sigma_luminance_indirect, 0.01, 1e6,
@@ -324,19 +438,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     ScopedStage stage(frame.times, "denoise/variance");
     // The depth slope the a-trous depth weights are relative to.
     const float* depth = b.surface.geometry[0];
-    float* slope = b.depth_slope.data();
-    for_rows(h, [&](int y) {
-      const size_t row = size_t(y) * size_t(w);
-      const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
-      row_loop(
-          w, 1,
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
-          },
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            slope[row + size_t(x)] = denoise::depth_slope_pixel<false>(depth, w, row, up, down, x);
-          });
-    });
+    compute_depth_slope(depth, w, h, b.depth_slope.data());
     // Box sums for rows within the box's radius of a row with a short history, then the spatial
     // estimate on those rows.
     for (int y = 0; y < h; ++y) {
@@ -369,34 +471,56 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       for (int x = 0; x < w; ++x) denoise::spatial_variance_pixel(variance, x, y);
     });
   }
-  {
+  // The a-trous passes: direct light (with indirect light when both share the passes), then
+  // indirect light alone.
+  denoise::AtrousPass base;
+  base.surface = b.surface.view();
+  base.depth_slope = b.depth_slope.data();
+  base.direct = {light_d, b.variance[0], {}, nullptr};
+  base.indirect = {light_i, b.variance[1], {}, nullptr};
+  base.width = w;
+  base.height = h;
+  base.sigma_luminance = s.sigma_luminance;
+  base.sigma_luminance_indirect = s.sigma_luminance_indirect;
+  base.sigma_normal = s.sigma_normal;
+  base.sigma_depth = s.sigma_depth;
+  const int indirect_iterations = spatial && has_indirect ? s.indirect_iterations : 0;
+  const bool half = indirect_iterations > 0 && s.indirect_resolution == 2;
+  // At full resolution with as many passes, both lights share each pass's geometry.
+  const bool both = indirect_iterations > 0 && !half && indirect_iterations == s.atrous_iterations;
+  if (spatial) {
     ScopedStage stage(frame.times, "denoise/atrous");
-    if (spatial) {
-      const float* var_d = b.variance[0];
-      const float* var_i = b.variance[1];
-      for (int k = 0; k < s.atrous_iterations; ++k) {
+    auto outputs = [&](int k, denoise::AtrousPass& pass) {
+      Planes<8>& out = b.filter[k & 1];
+      pass.direct.out = out.rgb(kFilterDirect);
+      pass.direct.out_var = out[kVarDirect];
+      pass.indirect.out = out.rgb(kFilterIndirect);
+      pass.indirect.out_var = out[kVarIndirect];
+    };
+    const denoise::AtrousPass result = run_atrous(base, both, s.atrous_iterations, outputs);
+    light_d = result.direct.in;
+    if (both) light_i = result.indirect.in;
+  }
+  if (indirect_iterations > 0 && !both) {
+    ScopedStage stage(frame.times, "denoise/indirect");
+    // Indirect light alone, in the pass's first slot with its own luminance sigma.
+    denoise::AtrousPass indirect_base = base;
+    indirect_base.direct = base.indirect;
+    indirect_base.sigma_luminance = s.sigma_luminance_indirect;
+    if (half) {
+      light_i = b.filter_half_indirect(indirect_base, light_i, indirect_iterations);
+    } else {
+      // (The direct result sits in the ping-pong planes' direct slots; these are the others.)
+      auto outputs = [&](int k, denoise::AtrousPass& pass) {
         Planes<8>& out = b.filter[k & 1];
-        denoise::AtrousPass pass;
-        pass.surface = b.surface.view();
-        pass.depth_slope = b.depth_slope.data();
-        pass.direct = {light_d, var_d, out.rgb(kFilterDirect), out[kVarDirect]};
-        pass.indirect = {light_i, var_i, out.rgb(kFilterIndirect), out[kVarIndirect]};
-        pass.width = w;
-        pass.height = h;
-        pass.step = 1 << k;
-        pass.sigma_luminance = s.sigma_luminance;
-        pass.sigma_luminance_indirect = s.sigma_luminance_indirect;
-        pass.sigma_normal = s.sigma_normal;
-        pass.sigma_depth = s.sigma_depth;
-        // The last pass's variance would guide nothing.
-        atrous_pass<1>(pass, has_indirect, k + 1 < s.atrous_iterations);
-        const Planes<8>& result = out;
-        light_d = result.rgb(kFilterDirect);
-        light_i = result.rgb(kFilterIndirect);
-        var_d = result[kVarDirect];
-        var_i = result[kVarIndirect];
-      }
+        pass.direct.out = out.rgb(kFilterIndirect);
+        pass.direct.out_var = out[kVarIndirect];
+      };
+      light_i = run_atrous(indirect_base, false, indirect_iterations, outputs).direct.in;
     }
+  }
+  {
+    ScopedStage stage(frame.times, "denoise/remodulate");
     const denoise::RemodulatePass remodulate{
         gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
         light_d,        light_i,

@@ -12,7 +12,8 @@
 //     world changed, so moved lights and objects leave no ghosts;
 //  4. an edge-avoiding a-trous wavelet filter guided by depth, normals and the luminance variance
 //     of the accumulated estimate (it fades as history grows, so frames at rest converge to the
-//     unbiased average);
+//     unbiased average); indirect light at half resolution, where the same passes reach twice as
+//     far for a quarter of the cost, then a joint-bilateral upsample;
 //  5. remodulate, add the emission back.
 // The unfiltered accumulation is the next frame's history.
 #pragma once
@@ -29,9 +30,13 @@
 namespace bounce {
 
 struct DenoiseSettings {
-  bool temporal = true;          // temporal accumulation through reprojection
-  bool spatial = true;           // the a-trous filter
-  int atrous_iterations = 5;     // a-trous passes (step 1, 2, 4, ...)
+  bool temporal = true;         // temporal accumulation through reprojection
+  bool spatial = true;          // the a-trous filter
+  int atrous_iterations = 3;    // a-trous passes over direct light (step 1, 2, 4, ...)
+  int indirect_iterations = 5;  // a-trous passes over indirect light, at its resolution
+  // Indirect light is filtered at 1/indirect_resolution of the width and height (1 or 2), then
+  // upsampled guided by depth and normals (render/denoise_half.h).
+  int indirect_resolution = 2;
   float sigma_luminance = 4.0f;  // luminance edge-stopping, in standard deviations
   // The same for indirect light. Photon gathers leave blotches as wide as the gather radius,
   // which a neighbourhood's variance cannot tell from signal: indirect light is filtered by

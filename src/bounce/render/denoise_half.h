@@ -1,0 +1,171 @@
+// Filtering indirect light at half resolution (render/denoiser.h): photon gathers leave blotches
+// as wide as the gather radius, tens of pixels at 512x512, which the full-resolution a-trous
+// filter's five passes (a footprint of about 13 pixels' standard deviation) cannot flatten. The
+// same passes over a half-resolution image reach twice as far at a quarter of the cost.
+//
+// downsample_pixel builds each half-resolution texel from its 2x2 block: the surface of the
+// block's nearest reflecting pixel, and the light and variance of the block's pixels that lie on
+// that surface. upsample_pixel is a joint-bilateral upsample: the four nearest texels, weighted
+// bilinearly and by depth and normal agreement with the full-resolution pixel; a pixel that no
+// texel represents (a sliver thinner than two pixels) keeps its own unfiltered light.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_kernels.h"
+
+namespace bounce::denoise {
+
+// Block pixels on the representative's surface: cosine between normals and relative depth.
+inline constexpr float kHalfNormalAgreement = 0.9f;
+inline constexpr float kHalfDepthAgreement = 0.05f;
+// Below this total weight the upsample keeps the pixel's own light.
+inline constexpr float kHalfMinWeight = 1e-3f;
+
+struct HalfDownsample {
+  ConstSurfacePlanes surface;  // full resolution
+  ConstRgbPlanes light;        // full resolution, demodulated
+  const float* variance = nullptr;
+  int width = 0;  // full resolution
+  int height = 0;
+  SurfacePlanes half_surface;  // half resolution (object ids unused)
+  RgbPlanes half_light;
+  float* half_variance = nullptr;
+  int half_width = 0;
+};
+
+// Half-resolution texel (hx, hy).
+BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+  const int x0 = 2 * hx, y0 = 2 * hy;
+  const int x1 = x0 + 1 < p.width ? x0 + 1 : x0, y1 = y0 + 1 < p.height ? y0 + 1 : y0;
+  const size_t block[4] = {
+      size_t(y0) * size_t(p.width) + size_t(x0), size_t(y0) * size_t(p.width) + size_t(x1),
+      size_t(y1) * size_t(p.width) + size_t(x0), size_t(y1) * size_t(p.width) + size_t(x1)};
+  // The representative: the nearest pixel whose surface is filtered (a non-zero normal).
+  int rep = -1;
+  float rep_depth = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const size_t q = block[k];
+    const float z = p.surface.depth[q];
+    const bool filtered =
+        (z > 0.0f) & (p.surface.nx[q] * p.surface.nx[q] + p.surface.ny[q] * p.surface.ny[q] +
+                          p.surface.nz[q] * p.surface.nz[q] >
+                      0.0f);
+    if (filtered && (rep < 0 || z < rep_depth)) {
+      rep = k;
+      rep_depth = z;
+    }
+  }
+  const size_t h = size_t(hy) * size_t(p.half_width) + size_t(hx);
+  if (rep < 0) {
+    p.half_surface.depth[h] = 0.0f;
+    p.half_surface.nx[h] = p.half_surface.ny[h] = p.half_surface.nz[h] = 0.0f;
+    p.half_light.set(h, vec3(0.0f));
+    p.half_variance[h] = 0.0f;
+    return;
+  }
+  const vec3 n = p.surface.normal(block[rep]);
+  vec3 sum(0.0f);
+  float var = 0.0f, count = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const size_t q = block[k];
+    const float z = p.surface.depth[q];
+    const bool same = (z > 0.0f) & (glm::dot(p.surface.normal(q), n) >= kHalfNormalAgreement) &
+                      (std::fabs(z - rep_depth) <= kHalfDepthAgreement * rep_depth);
+    const float w = same ? 1.0f : 0.0f;
+    sum += w * p.light.get(q);
+    var += w * p.variance[q];
+    count += w;
+  }
+  // (The representative itself always counts.)
+  const float inv = 1.0f / count;
+  p.half_surface.depth[h] = rep_depth;
+  p.half_surface.nx[h] = n.x;
+  p.half_surface.ny[h] = n.y;
+  p.half_surface.nz[h] = n.z;
+  p.half_light.set(h, sum * inv);
+  // The variance of the block's mean.
+  p.half_variance[h] = var * inv * inv;
+}
+
+struct HalfUpsample {
+  ConstSurfacePlanes surface;  // full resolution
+  const float* depth_slope;    // full resolution
+  ConstRgbPlanes light;        // full resolution, unfiltered (the fallback)
+  ConstSurfacePlanes half_surface;
+  ConstRgbPlanes half_light;  // filtered
+  int width = 0;
+  int height = 0;
+  int half_width = 0;
+  int half_height = 0;
+  float sigma_depth = 0.0f;
+  RgbPlanes out;  // full resolution
+};
+
+// The two texel rows a full-resolution row y reads, and their bilinear weights.
+struct HalfUpsampleRows {
+  size_t row[2];
+  float weight[2];
+};
+BOUNCE_HD inline HalfUpsampleRows half_upsample_rows(const HalfUpsample& p, int y) {
+  // Texel centres sit at full-resolution coordinates 2h + 0.5.
+  const float fy = 0.5f * (float(y) + 0.5f) - 0.5f;
+  const int hy0 = int(std::floor(fy));
+  const float ty = fy - float(hy0);
+  const int last = p.half_height - 1;
+  const int r0 = hy0 < 0 ? 0 : hy0, r1 = hy0 + 1 > last ? last : hy0 + 1;
+  return {{size_t(r0) * size_t(p.half_width), size_t(r1) * size_t(p.half_width)}, {1.0f - ty, ty}};
+}
+
+// Full-resolution pixel x of row y (rows from half_upsample_rows). kClamp: texel columns are
+// clamped to the image (the first and last columns; a row's interior needs no test).
+template <bool kClamp>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
+                                                    const HalfUpsampleRows& rows, int x, int y) {
+  const size_t i = size_t(y) * size_t(p.width) + size_t(x);
+  const float z = p.surface.depth[i];
+  const float nx = p.surface.nx[i], ny = p.surface.ny[i], nz = p.surface.nz[i];
+  // Even columns sit a quarter texel right of a texel centre, odd ones a quarter left.
+  const int hx0 = (x >> 1) - 1 + (x & 1);
+  const float tx = (x & 1) ? 0.25f : 0.75f;
+  // A texel counts where it lies on this pixel's surface: its normal within the block test's
+  // cosine, and its depth within what the local slope allows over the two pixels its centre can
+  // be away (plus the block test's relative margin). Plain tests, not exponentials: this runs
+  // for every pixel, and the filtered light varies slowly anyway. The slope is capped: a sliver
+  // between two depth edges has a steep slope by its neighbours, not by its own surface.
+  const float slope = glm::min(p.depth_slope[i], kHalfDepthAgreement * z);
+  const float max_dz = (2.0f * p.sigma_depth * slope) + kHalfDepthAgreement * z;
+  float r = 0.0f, g = 0.0f, b = 0.0f, wsum = 0.0f;
+  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+    constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
+    int hx = hx0 + dx;
+    if constexpr (kClamp) hx = hx < 0 ? 0 : (hx >= p.half_width ? p.half_width - 1 : hx);
+    const size_t h = rows.row[dy] + size_t(hx);
+    const float bilinear = (dx ? tx : 1.0f - tx) * rows.weight[dy];
+    const float zh = p.half_surface.depth[h];
+    const float cos_nh =
+        nx * p.half_surface.nx[h] + ny * p.half_surface.ny[h] + nz * p.half_surface.nz[h];
+    const bool same =
+        (zh > 0.0f) & (cos_nh >= kHalfNormalAgreement) & (std::fabs(zh - z) <= max_dz);
+    const float w = same ? bilinear : 0.0f;
+    r += w * p.half_light.r[h];
+    g += w * p.half_light.g[h];
+    b += w * p.half_light.b[h];
+    wsum += w;
+  });
+  const bool represented = (z > 0.0f) & (wsum > kHalfMinWeight);
+  const float inv = 1.0f / (represented ? wsum : 1.0f);
+  p.out.r[i] = represented ? r * inv : p.light.r[i];
+  p.out.g[i] = represented ? g * inv : p.light.g[i];
+  p.out.b[i] = represented ? b * inv : p.light.b[i];
+}
+
+// The whole upsample at pixel (x, y), for a launcher that runs one thread per pixel.
+BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, int x, int y) {
+  upsample_pixel<true>(p, half_upsample_rows(p, y), x, y);
+}
+
+}  // namespace bounce::denoise
