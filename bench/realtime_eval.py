@@ -50,7 +50,7 @@ class Config:
     flicker: int = 60
 
 
-FULL = Config(size=512, ref_spp=1024, fps=30, rest_to=1.0, rest_frames=[0, 30],
+FULL = Config(size=512, ref_spp=4096, fps=30, rest_to=1.0, rest_frames=[0, 30],
               motion_to=2.0, motion_frames=[30, 60])
 # A smoke test: tiny images, a few frames; the "1 s" frames become the last frame rendered.
 QUICK = Config(size=48, ref_spp=32, fps=30, rest_to=0.2, rest_frames=[0, 6],

@@ -303,24 +303,28 @@ TEST(Denoiser, EmissionSeenAtRestIsAveragedWithTheFrames) {
   expect_near_rel(out.direct.at(1, 1), sum / float(frames), 1e-5f, "edge pixel");
 }
 
-// Indirect light a technique accumulates itself keeps a short history even at rest.
+// Indirect light a technique accumulates itself keeps a short history: accumulated_history
+// frames while the camera moves, one at rest (the technique's own average is the history there).
 TEST(Denoiser, AccumulatedIndirectLightKeepsItsCap) {
   const GBuffer g = plane(4, 4);
-  Denoiser d;
-  d.settings().spatial = false;
-  d.settings().accumulated_history = 2;
-  float expected_d = 0.0f, expected_i = 0.0f;
-  Output out;
-  for (int k = 0; k < 8; ++k) {
-    const float v = float(k * k);
-    const Image light = image_of(4, 4, [&](int, int) { return vec3(v); });
-    out = run(d, g, k == 0 ? HistoryState::kReset : HistoryState::kRest, light, &light, true);
-    // Direct: the mean of all frames; indirect: alpha = 1 / (min(n, 2) + 1).
-    expected_d += (v - expected_d) / float(k + 1);
-    expected_i += (v - expected_i) / float(std::min(k, 2) + 1);
+  for (const HistoryState state : {HistoryState::kRest, HistoryState::kCameraMoved}) {
+    Denoiser d;
+    d.settings().spatial = false;
+    d.settings().accumulated_history = 3;
+    const int cap = state == HistoryState::kRest ? 1 : 3;
+    float expected_d = 0.0f, expected_i = 0.0f;
+    Output out;
+    for (int k = 0; k < 8; ++k) {
+      const float v = float(k * k);
+      const Image light = image_of(4, 4, [&](int, int) { return vec3(v); });
+      out = run(d, g, k == 0 ? HistoryState::kReset : state, light, &light, true);
+      // Direct: the mean of all frames; indirect: alpha = 1 / (min(n, cap) + 1).
+      expected_d += (v - expected_d) / float(k + 1);
+      expected_i += (v - expected_i) / float(std::min(k, cap) + 1);
+    }
+    EXPECT_NEAR(out.direct.at(2, 2).x, expected_d, 1e-4f * expected_d);
+    EXPECT_NEAR(out.indirect.at(2, 2).x, expected_i, 1e-4f * expected_i) << cap;
   }
-  EXPECT_NEAR(out.direct.at(2, 2).x, expected_d, 1e-4f * expected_d);
-  EXPECT_NEAR(out.indirect.at(2, 2).x, expected_i, 1e-4f * expected_i);
 }
 
 // Motion while the camera moves: the history is capped at history_max.
@@ -624,9 +628,10 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
     EXPECT_NE(p.name.rfind("denoise", 0), 0u) << p.name << ": no stage prefix, every name is short";
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
-  for (const char* name : {"temporal", "spatial", "atrous_iterations", "sigma_luminance",
-                           "sigma_normal", "sigma_depth", "history_max", "accumulated_history",
-                           "clip_gamma", "depth_tolerance", "normal_tolerance"})
+  for (const char* name :
+       {"temporal", "spatial", "atrous_iterations", "indirect_iterations", "indirect_resolution",
+        "sigma_luminance", "sigma_normal", "sigma_depth", "history_max", "accumulated_history",
+        "clip_gamma", "depth_tolerance", "normal_tolerance"})
     EXPECT_EQ(names.count(name), 1u) << name;
   d.params().set("atrous_iterations", "2");
   d.params().set("sigma_luminance", "8");

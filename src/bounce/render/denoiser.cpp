@@ -344,7 +344,8 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   params_.add_int("history_max", &s.history_max, 1, 4096,
                   "frames of history a pixel keeps while anything moves");
   params_.add_int("accumulated_history", &s.accumulated_history, 1, 4096,
-                  "frames of history for indirect light the technique accumulates itself");
+                  "frames of history for indirect light the technique accumulates itself, "
+                  "while the camera moves");
   params_.add_float("clip_gamma", &s.clip_gamma, 0.0, 100.0,
                     "history clamp half-width in standard deviations when the world changed");
   params_.add_float("depth_tolerance", &s.depth_tolerance, 0.0, 10.0,
@@ -387,9 +388,14 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const bool rest = state == HistoryState::kRest && s.temporal;
   const float cap_direct =
       rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
-  const float cap_indirect = frame.indirect_accumulated
-                                 ? std::min(cap_direct, float(std::max(s.accumulated_history, 1)))
-                                 : cap_direct;
+  // Indirect light a technique accumulates itself already holds its history; the denoiser adds a
+  // short one only while the camera moves (the technique then re-gathers kept photons from a new
+  // view, at a lower resolution). At rest and after a world change (where the technique
+  // restarts) a longer one would only lag behind the technique's own average.
+  const float accumulated_cap =
+      state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
+  const float cap_indirect =
+      frame.indirect_accumulated ? std::min(cap_direct, accumulated_cap) : cap_direct;
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;

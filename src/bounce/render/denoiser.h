@@ -45,7 +45,8 @@ struct DenoiseSettings {
   float sigma_normal = 128.0f;    // normal edge-stopping exponent
   float sigma_depth = 1.0f;       // depth edge-stopping, relative to the local depth gradient
   int history_max = 32;           // frames of history a pixel keeps while anything moves
-  int accumulated_history = 4;    // the same for indirect light a technique accumulates itself
+  int accumulated_history = 4;    // the same, while the camera moves, for indirect light a
+                                  // technique accumulates itself (else 1)
   float clip_gamma = 1.25f;       // variance clipping box half-width in sigmas (world changes)
   float depth_tolerance = 0.05f;  // disocclusion: relative depth difference
   float normal_tolerance = 0.9f;  // disocclusion: minimum normal agreement (cosine)
