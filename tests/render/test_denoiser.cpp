@@ -327,6 +327,24 @@ TEST(Denoiser, AccumulatedIndirectLightKeepsItsCap) {
   }
 }
 
+// A change of size (the viewer's resolution scaler) keeps the history: it is reprojected from
+// the previous size, with motion in the new frame's pixels.
+TEST(Denoiser, HistorySurvivesAChangeOfSize) {
+  const GBuffer big = plane(16, 16), small = plane(8, 8);
+  Denoiser d;
+  d.settings().spatial = false;
+  for (int k = 0; k < 4; ++k)
+    run(d, big, k == 0 ? HistoryState::kReset : HistoryState::kCameraMoved,
+        Image(16, 16, vec3(1.0f)));
+  const Output out = run(d, small, HistoryState::kCameraMoved, Image(8, 8, vec3(3.0f)));
+  // History lengths 0, 1, 2, 3 at the large size; the small frame counts 4: alpha = 1/5.
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      EXPECT_NEAR(out.direct.at(x, y).x, 1.0f + 2.0f / 5.0f, 1e-4f) << x << "," << y;
+      EXPECT_EQ(d.history_length()[size_t(y * 8 + x)], 4.0f);
+    }
+}
+
 // Motion while the camera moves: the history is capped at history_max.
 TEST(Denoiser, HistoryIsCappedWhileTheCameraMoves) {
   const GBuffer g = plane(4, 4);

@@ -3,6 +3,8 @@
 // while the rest of the frame stays still; the Renderer fills them frame after frame.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "bounce/render/gbuffer.h"
@@ -134,6 +136,27 @@ TEST(Motion, RendererFillsMotionFrameAfterFrame) {
     largest = std::max(largest, glm::length(m));
   EXPECT_GT(largest, 0.5f);
   for (vec2 m : renderer.render(moved, settings).gbuffer.motion) ASSERT_EQ(m, vec2(0.0f));
+}
+
+// The viewer's resolution scaler changes the size in motion: motion is then measured in the new
+// frame's pixels (zero for a still camera), and the denoiser's history carries over.
+TEST(Motion, ResizedFramesKeepTheirHistory) {
+  const Scene scene = make_cornell();
+  const auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_technique("direct"));
+  FrameSettings settings;
+  settings.width = settings.height = 32;
+  settings.light_samples = 1;
+  settings.accumulate = true;
+  settings.denoise = true;
+  for (int k = 0; k < 3; ++k) renderer.render(scene.camera, settings);
+  settings.width = settings.height = 16;
+  const Frame& f = renderer.render(scene.camera, settings);
+  for (vec2 m : f.gbuffer.motion) ASSERT_LT(glm::length(m), 1e-3f);
+  // Three frames of history (lengths 0, 1, 2), reprojected: the fourth frame counts 3.
+  const std::vector<float>& length = renderer.denoiser().history_length();
+  ASSERT_EQ(length.size(), size_t(16 * 16));
+  EXPECT_EQ(*std::max_element(length.begin(), length.end()), 3.0f);
 }
 
 }  // namespace

@@ -45,6 +45,10 @@ struct TemporalPass {
   vec2* motion = nullptr;  // a copy of the G-buffer's motion, for the debug view
   int width = 0;
   int height = 0;
+  // The size of the previous frame's planes (prev_*): the viewer's resolution scaler changes
+  // the size in motion, and the history is reprojected across the change.
+  int prev_width = 0;
+  int prev_height = 0;
   TemporalSettings s;
 };
 
@@ -73,16 +77,19 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
     }
     return r;
   }
-  // Bilinear taps around where the surface was: pixel centres are at integer + 0.5. A tap is kept
+  // Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
+  // in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
   // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
   // depth_tolerance relative, normals within normal_tolerance). The four taps are read
-  // branch-free (taps outside the image read this pixel with weight 0).
+  // branch-free (taps outside the image read its first pixel with weight 0).
   const vec2 m = p.g.motion[i];
-  const float px = float(x) - m.x, py = float(y) - m.y;
+  const float sx = float(p.prev_width) / float(p.width),
+              sy = float(p.prev_height) / float(p.height);
+  const float px = (float(x) + 0.5f - m.x) * sx - 0.5f, py = (float(y) + 0.5f - m.y) * sy - 0.5f;
   const float fx0 = std::floor(px), fy0 = std::floor(py);
   const float fx = px - fx0, fy = py - fy0;
-  const int x0 = int(glm::clamp(fx0, -2.0f, float(p.width))),
-            y0 = int(glm::clamp(fy0, -2.0f, float(p.height)));
+  const int x0 = int(glm::clamp(fx0, -2.0f, float(p.prev_width))),
+            y0 = int(glm::clamp(fy0, -2.0f, float(p.prev_height)));
   const uint32_t object = p.g.mesh[i];
   const float z = p.g.depth[i], dz_max = p.s.depth_tolerance * z;
   const vec3 normal = p.g.normal[i];
@@ -90,8 +97,8 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
   for (int k = 0; k < 4; ++k) {
     const int dx = k & 1, dy = k >> 1;
     const int qx = x0 + dx, qy = y0 + dy;
-    const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.width) & (qy < p.height);
-    const size_t q = inside ? size_t(qy) * size_t(p.width) + size_t(qx) : i;
+    const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
+    const size_t q = inside ? size_t(qy) * size_t(p.prev_width) + size_t(qx) : 0;
     const bool same = (p.prev_surface.object[q] == object) &
                       (std::fabs(p.prev_surface.depth[q] - z) <= dz_max) &
                       (glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance);

@@ -208,6 +208,8 @@ denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iteratio
 struct Denoiser::Buffers {
   int width = 0;
   int height = 0;
+  int last_width = 0;  // the size of the last run's surfaces and history
+  int last_height = 0;
   bool valid = false;         // a previous run left a history of this size
   bool had_indirect = false;  // and it had indirect light
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
@@ -233,13 +235,20 @@ struct Denoiser::Buffers {
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
 
-  void resize(int w, int h) {
+  // Sizes every plane for w x h. With `keep_last`, the last run's surfaces and history (surface,
+  // history and the Denoiser's history length) stay at their old size: this run reprojects them
+  // across the size change. Otherwise nothing is valid any more.
+  void resize(int w, int h, bool keep_last) {
+    last_width = keep_last ? width : w;
+    last_height = keep_last ? height : h;
     width = w;
     height = h;
     const size_t n = size_t(w) * size_t(h);
-    surface.resize(n);
+    if (!keep_last) {
+      surface.resize(n);
+      history.assign(n, HistoryTexel{});
+    }
     prev_surface.resize(n);
-    history.assign(n, HistoryTexel{});
     prev_history.assign(n, HistoryTexel{});
     prev_length.assign(n, 0.0f);
     rest.resize(n);
@@ -259,7 +268,7 @@ struct Denoiser::Buffers {
     half_slope.assign(half_n, 0.0f);
     for (auto& planes : half_light) planes.resize(half_n);
     upsampled.resize(n);
-    valid = false;
+    valid = valid && keep_last;
   }
 
   // Indirect light filtered at half resolution (denoise_half.h): downsample, `iterations`
@@ -370,9 +379,15 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const bool has_indirect = indirect != nullptr;
   HistoryState state = frame.state;
   if (b.width != w || b.height != h) {
-    b.resize(w, h);
-    history_length_.assign(n, 0.0f);
+    // A history to reproject from survives a size change (the viewer's resolution scaler).
+    const bool keep_last = b.valid && state != HistoryState::kReset && settings_.temporal;
+    b.resize(w, h, keep_last);
+    if (!keep_last) history_length_.assign(n, 0.0f);
+  } else {
+    b.last_width = w;
+    b.last_height = h;
   }
+  const bool resized = b.last_width != w || b.last_height != h;
   if (!b.valid || b.had_indirect != has_indirect) state = HistoryState::kReset;
   b.valid = true;
   b.had_indirect = has_indirect;
@@ -415,11 +430,14 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.motion = b.motion.data();
     temporal.width = w;
     temporal.height = h;
+    temporal.prev_width = b.last_width;
+    temporal.prev_height = b.last_height;
     denoise::TemporalSettings& ts = temporal.s;
     ts.history = s.temporal && state != HistoryState::kReset;
-    ts.reproject = state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
+    ts.reproject =
+        resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
     ts.clip = state == HistoryState::kWorldChanged;
-    ts.rest_continues = rest && b.rest_valid;
+    ts.rest_continues = rest && b.rest_valid && !resized;
     ts.cap_direct = cap_direct;
     ts.cap_indirect = cap_indirect;
     ts.clip_gamma = s.clip_gamma;

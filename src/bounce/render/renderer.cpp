@@ -55,12 +55,12 @@ SceneChange Renderer::next_change(const Camera& camera, const FrameSettings& set
   return change_since_last(camera, settings, parameter_state(settings), ignore_size);
 }
 
-HistoryState Renderer::history_state(const SceneChange& change, const FrameSettings& settings,
-                                     bool resized) const {
-  // History survives what moves surfaces (reprojection follows them) but not what changes what
-  // the image means: a new technique, parameters (switching the denoiser on is one) or size, or
-  // the denoiser's own settings.
-  if (!settings.accumulate || change.everything || change.parameters || resized ||
+HistoryState Renderer::history_state(const SceneChange& change,
+                                     const FrameSettings& settings) const {
+  // History survives what moves surfaces (reprojection follows them, across a change of size
+  // too: a resize counts as a camera change) but not what changes what the image means: a new
+  // technique, parameters (switching the denoiser on is one), or the denoiser's own settings.
+  if (!settings.accumulate || change.everything || change.parameters ||
       !(denoiser_.settings() == last_denoise_))
     return HistoryState::kReset;
   if (!change.any()) return HistoryState::kRest;
@@ -95,8 +95,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   f.times.clear();
   std::vector<std::string> parameters = parameter_state(settings);
   f.change = change_since_last(camera, settings, parameters, false);
-  const bool resized = settings.width != last_width_ || settings.height != last_height_;
-  const HistoryState history = history_state(f.change, settings, resized);
+  const HistoryState history = history_state(f.change, settings);
   pending_ = SceneChange{};
   last_camera_ = camera;
   last_width_ = settings.width;
@@ -137,9 +136,12 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "gbuffer");
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
     f.primary_rays = build_gbuffer(scene_data_.view(), tracer_, rays, subpixel, f.gbuffer);
-    // Motion from the last frame's camera (none on the first frame or after a resize).
-    const bool first = frame_index_ == 0 || resized || change.everything;
-    const CameraRays& previous = first ? rays : last_rays_;
+    // Motion from the last frame's camera (none on the first frame), in this frame's pixels: after
+    // a resize the last camera's rays are measured in the new size.
+    const bool first = frame_index_ == 0 || change.everything;
+    CameraRays previous = first ? rays : last_rays_;
+    previous.width = rays.width;
+    previous.height = rays.height;
     compute_motion(scene_data_.view(), rays, previous, f.gbuffer);
   }
   last_rays_ = rays;

@@ -88,8 +88,7 @@ class Renderer {
   SceneChange change_since_last(const Camera& camera, const FrameSettings& settings,
                                 const std::vector<std::string>& parameters, bool ignore_size) const;
   // How the denoiser's history relates to this frame (from the change and the settings).
-  HistoryState history_state(const SceneChange& change, const FrameSettings& settings,
-                             bool resized) const;
+  HistoryState history_state(const SceneChange& change, const FrameSettings& settings) const;
   // Averages `image` with the frames before it while at rest; restarts when `rest` is false.
   // Without accumulation nothing is kept.
   struct RunningAverage {
