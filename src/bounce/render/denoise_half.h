@@ -37,58 +37,60 @@ struct HalfDownsample {
   int half_width = 0;
 };
 
-// Half-resolution texel (hx, hy).
-BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+// Half-resolution texel hx of row hy. kClampX: the block's second column may lie outside an
+// image of odd width (the last texel of a row; the row loop's other texels need no test).
+// Branch-free, so the CPU's row loop vectorises.
+template <bool kClampX>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
   const int x0 = 2 * hx, y0 = 2 * hy;
-  const int x1 = x0 + 1 < p.width ? x0 + 1 : x0, y1 = y0 + 1 < p.height ? y0 + 1 : y0;
-  const size_t block[4] = {
-      size_t(y0) * size_t(p.width) + size_t(x0), size_t(y0) * size_t(p.width) + size_t(x1),
-      size_t(y1) * size_t(p.width) + size_t(x0), size_t(y1) * size_t(p.width) + size_t(x1)};
+  const int x1 = kClampX && x0 + 1 >= p.width ? x0 : x0 + 1;
+  const int y1 = y0 + 1 < p.height ? y0 + 1 : y0;
+  const size_t r0 = size_t(y0) * size_t(p.width), r1 = size_t(y1) * size_t(p.width);
+  const size_t block[4] = {r0 + size_t(x0), r0 + size_t(x1), r1 + size_t(x0), r1 + size_t(x1)};
   // The representative: the nearest pixel whose surface is filtered (a non-zero normal).
-  int rep = -1;
-  float rep_depth = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    const size_t q = block[k];
+  float rep_depth = 1e30f, nx = 0.0f, ny = 0.0f, nz = 0.0f;
+  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+    const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
-    const bool filtered =
-        (z > 0.0f) & (p.surface.nx[q] * p.surface.nx[q] + p.surface.ny[q] * p.surface.ny[q] +
-                          p.surface.nz[q] * p.surface.nz[q] >
-                      0.0f);
-    if (filtered && (rep < 0 || z < rep_depth)) {
-      rep = k;
-      rep_depth = z;
-    }
-  }
-  const size_t h = size_t(hy) * size_t(p.half_width) + size_t(hx);
-  if (rep < 0) {
-    p.half_surface.depth[h] = 0.0f;
-    p.half_surface.nx[h] = p.half_surface.ny[h] = p.half_surface.nz[h] = 0.0f;
-    p.half_light.set(h, vec3(0.0f));
-    p.half_variance[h] = 0.0f;
-    return;
-  }
-  const vec3 n = p.surface.normal(block[rep]);
-  vec3 sum(0.0f);
-  float var = 0.0f, count = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    const size_t q = block[k];
+    const float qx = p.surface.nx[q], qy = p.surface.ny[q], qz = p.surface.nz[q];
+    const bool nearer = (z > 0.0f) & (qx * qx + qy * qy + qz * qz > 0.0f) & (z < rep_depth);
+    rep_depth = nearer ? z : rep_depth;
+    nx = nearer ? qx : nx;
+    ny = nearer ? qy : ny;
+    nz = nearer ? qz : nz;
+  });
+  const bool found = rep_depth < 1e30f;
+  float r = 0.0f, g = 0.0f, b = 0.0f, var = 0.0f, count = 0.0f;
+  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+    const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
-    const bool same = (z > 0.0f) & (glm::dot(p.surface.normal(q), n) >= kHalfNormalAgreement) &
+    const float cos_q = nx * p.surface.nx[q] + ny * p.surface.ny[q] + nz * p.surface.nz[q];
+    const bool same = (z > 0.0f) & (cos_q >= kHalfNormalAgreement) &
                       (std::fabs(z - rep_depth) <= kHalfDepthAgreement * rep_depth);
     const float w = same ? 1.0f : 0.0f;
-    sum += w * p.light.get(q);
+    r += w * p.light.r[q];
+    g += w * p.light.g[q];
+    b += w * p.light.b[q];
     var += w * p.variance[q];
     count += w;
-  }
-  // (The representative itself always counts.)
-  const float inv = 1.0f / count;
-  p.half_surface.depth[h] = rep_depth;
-  p.half_surface.nx[h] = n.x;
-  p.half_surface.ny[h] = n.y;
-  p.half_surface.nz[h] = n.z;
-  p.half_light.set(h, sum * inv);
+  });
+  // (Where a representative was found it counts itself, so count >= 1.)
+  const float inv = found ? 1.0f / (count > 0.0f ? count : 1.0f) : 0.0f;
+  const size_t h = size_t(hy) * size_t(p.half_width) + size_t(hx);
+  p.half_surface.depth[h] = found ? rep_depth : 0.0f;
+  p.half_surface.nx[h] = nx;
+  p.half_surface.ny[h] = ny;
+  p.half_surface.nz[h] = nz;
+  p.half_light.r[h] = r * inv;
+  p.half_light.g[h] = g * inv;
+  p.half_light.b[h] = b * inv;
   // The variance of the block's mean.
   p.half_variance[h] = var * inv * inv;
+}
+
+// The whole downsample at texel (hx, hy), for a launcher that runs one thread per texel.
+BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+  downsample_pixel<true>(p, hx, hy);
 }
 
 struct HalfUpsample {

@@ -293,7 +293,11 @@ ConstRgbPlanes Denoiser::Buffers::filter_half_indirect(const denoise::AtrousPass
   down.half_variance = b.half_light[0][3];
   down.half_width = hw;
   for_rows(hh, [&](int y) {
-    for (int x = 0; x < hw; ++x) denoise::downsample_pixel(down, x, y);
+    // Only the last texel of a row of odd width has a block column outside the image.
+    const int interior = w % 2 == 0 ? hw : hw - 1;
+#pragma GCC ivdep
+    for (int x = 0; x < interior; ++x) denoise::downsample_pixel<false>(down, x, y);
+    for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true>(down, x, y);
   });
   compute_depth_slope(b.half_surface.geometry[0], hw, hh, b.half_slope.data());
   denoise::AtrousPass pass = base;
