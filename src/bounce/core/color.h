@@ -21,7 +21,7 @@ inline float srgb_decode(float encoded) {
 }
 
 // Relative luminance of a linear colour with Rec. 709 / sRGB primaries.
-inline float luminance(vec3 rgb) {
+BOUNCE_HD inline float luminance(vec3 rgb) {
   return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
 }
 

@@ -1,5 +1,5 @@
 // nvcc check of the per-pixel kernels: the G-buffer (render/gbuffer_kernel.h) and its motion
-// (render/motion_kernel.h), direct light with
+// (render/motion_kernel.h), direct light, looped over the lights or resampled, with
 // its shadow rays traced at once (render/direct_kernel.h), and the path tracer's pixel and camera
 // paths (techniques/path/path_tracer.h).
 #include "bounce/render/direct_kernel.h"
@@ -25,14 +25,18 @@ __global__ void check_motion(SceneView scene, CameraRays camera, CameraRays prev
   g.motion[i] = motion_pixel(scene, camera, previous, g, i);
 }
 
-__global__ void check_direct(SceneView scene, TraceView trace, ConstGBufferView g, vec3 eye,
-                             DirectSettings settings, vec3* out) {
+__global__ void check_direct(SceneView scene, LightPickerView lights, TraceView trace,
+                             ConstGBufferView g, vec3 eye, DirectSettings settings, vec3* out) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= g.size()) return;
   vec3 sum = g.emission[i];
-  direct_pixel(scene, g, i, eye, settings, [&](const Ray& ray, vec3 radiance) {
+  auto shadow = [&](const Ray& ray, vec3 radiance) {
     if (!trace.occluded(ray)) sum += radiance;
-  });
+  };
+  if (lights.count > settings.max_looped_lights)
+    direct_pixel_resampled(scene, lights, g, i, eye, settings, shadow);
+  else
+    direct_pixel(scene, g, i, eye, settings, shadow);
   out[i] = sum;
 }
 

@@ -40,9 +40,10 @@ struct ShadowBatch {
 
 }  // namespace
 
-uint64_t compute_direct(const SceneView& scene, const Tracer& tracer, const GBuffer& g, vec3 eye,
-                        const DirectSettings& settings, Image& out) {
+uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
+                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
   const ConstGBufferView view = g.view();
+  const bool resampled = lights.count > settings.max_looped_lights;
   vec3* pixels = out.pixels().data();
   tbb::enumerable_thread_specific<ShadowBatch> batches;
   parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
@@ -51,12 +52,16 @@ uint64_t compute_direct(const SceneView& scene, const Tracer& tracer, const GBuf
       for (int x = x0; x < x1; ++x) {
         const uint32_t i = uint32_t(view.index(x, y));
         pixels[i] = view.emission[i];  // before the samples: a full batch adds to it at once
-        direct_pixel(scene, view, i, eye, settings, [&](const Ray& ray, vec3 radiance) {
+        auto shadow = [&](const Ray& ray, vec3 radiance) {
           b.rays.push_back(ray);
           b.radiance.push_back(radiance);
           b.pixel.push_back(i);
           if (b.rays.size() == ShadowBatch::kCapacity) b.flush(tracer, pixels);
-        });
+        };
+        if (resampled)
+          direct_pixel_resampled(scene, lights, view, i, eye, settings, shadow);
+        else
+          direct_pixel(scene, view, i, eye, settings, shadow);
       }
     b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
   });

@@ -1,6 +1,8 @@
 // The direct-light stage: light from every light source at each G-buffer pixel, with shadow
-// rays; area lights (emissive triangles, spheres) take stratified QMC samples. The per-pixel
-// body is direct_pixel (direct_kernel.h); this launcher traces its shadow rays in batches.
+// rays; area lights (emissive triangles, spheres) take stratified QMC samples. Scenes with more
+// lights than DirectSettings::max_looped_lights take resampled light samples instead. The
+// per-pixel bodies are direct_pixel and direct_pixel_resampled (direct_kernel.h); this launcher
+// traces their shadow rays in batches.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +16,8 @@
 namespace bounce {
 
 // Writes emitted plus direct radiance towards `eye` for every pixel; returns shadow rays traced.
-uint64_t compute_direct(const SceneView& scene, const Tracer& tracer, const GBuffer& g, vec3 eye,
-                        const DirectSettings& settings, Image& out);
+// `lights` picks lights by power for the resampled path (LightPicker::view()).
+uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
+                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
 
 }  // namespace bounce

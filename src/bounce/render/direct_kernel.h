@@ -7,12 +7,14 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "bounce/core/color.h"
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/core/qmc.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/brdf.h"
 #include "bounce/render/gbuffer_view.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/render/light_sampling.h"
 #include "bounce/scene/scene_view.h"
 
@@ -22,6 +24,10 @@ struct DirectSettings {
   int light_samples = 16;  // per area or sphere light, per pixel
   uint32_t frame = 0;      // rotates the sample pattern from frame to frame
   uint32_t seed = 0;
+  // Scenes with more lights than this (lights and area lights together) take light_samples
+  // resampled light samples per pixel instead of samples of every light (direct_pixel_resampled).
+  uint32_t max_looped_lights = 8;
+  int candidates = 8;  // resampling: candidates drawn by power per light sample
 };
 
 // A per-pixel, per-light rotation of the sample pattern (Cranley-Patterson), as two floats.
@@ -83,6 +89,54 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
     for (int k = 0; k < n; ++k)
       add(sample_area_light(scene, scene.area_lights[a], p, rotate_unit(hammersley(k, n), offset)),
           inv_n);
+  }
+}
+
+// Direct light at pixel i of g for scenes with many lights (a Quake level has hundreds):
+// light_samples shadow rays whatever the light count, each for a light sample chosen by
+// resampled importance sampling (Talbot et al. 2005; the candidate step of Bitterli et al.
+// 2020, ReSTIR): `candidates` samples drawn by power (`picker`), one kept with probability
+// proportional to its unshadowed contribution's luminance, weighted so the estimate stays
+// unbiased: f(y) / p(y) * (1/M) sum of p(x_j) / q(x_j). Lights that are far, behind the surface
+// or facing away are thus rarely traced. Calls shadow(ray, radiance) as direct_pixel does.
+template <typename Shadow>
+BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerView& picker,
+                                      const ConstGBufferView& g, uint32_t i, vec3 eye,
+                                      const DirectSettings& settings, Shadow&& shadow) {
+  if (!g.hit(i) || picker.empty()) return;
+  const SurfaceHit s = g.surface(i);
+  const vec3 wo = glm::normalize(eye - s.position);
+  const vec3 p = offset_origin(s.position, s.geometric_normal);
+  const int n = settings.light_samples, m = settings.candidates > 0 ? settings.candidates : 1;
+  Pcg32 rng(hash_u32(i ^ hash_u32(settings.frame + settings.seed * 0x85EBCA6Bu)), 0x5bd1e995u);
+  for (int k = 0; k < n; ++k) {
+    float weight_sum = 0.0f, kept_weight = 0.0f;
+    vec3 kept_radiance(0.0f);
+    LightSample kept;
+    for (int j = 0; j < m; ++j) {
+      const float u_pick = rng.next_float();
+      const vec2 u = rng.next2();
+      const float u_keep = rng.next_float();
+      const uint32_t entry = picker.pick(u_pick);
+      const float pmf = picker.pmf[entry];
+      if (!(pmf > 0.0f)) continue;
+      const LightSample ls = sample_light_entry(scene, picker.light_count, entry, p, u).ls;
+      if (!ls.valid()) continue;
+      const float cos_theta = glm::dot(s.normal, ls.wi);
+      if (cos_theta <= 0.0f || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) continue;
+      // This candidate's one-sample estimate f / q; its weight p / q with target p = luminance(f).
+      const vec3 radiance = eval_brdf(s, wo, ls.wi) * ls.weight * (cos_theta / pmf);
+      const float w = luminance(radiance);
+      if (!(w > 0.0f)) continue;
+      weight_sum += w;
+      if (u_keep * weight_sum < w) {
+        kept = ls;
+        kept_weight = w;
+        kept_radiance = radiance;
+      }
+    }
+    if (kept_weight <= 0.0f) continue;
+    shadow(shadow_ray(p, kept), kept_radiance * (weight_sum / (float(m) * kept_weight * float(n))));
   }
 }
 

@@ -146,6 +146,22 @@ inline LightSample sample_area_light(const Scene& scene, const AreaLight& light,
   return area_light_sample(sample_area_light_point(scene, light, u), light.radiance, light.area, p);
 }
 
+// A sample of one entry of a light list ordered as LightPicker's (render/light_picker.h): the
+// scene's lights (0 .. light_count - 1), then its area lights. `delta`: a point, spot or
+// directional light, whose one sample no BSDF sampling could find.
+struct EntrySample {
+  LightSample ls;
+  bool delta = false;
+};
+BOUNCE_HD inline EntrySample sample_light_entry(const SceneView& scene, uint32_t light_count,
+                                                uint32_t entry, vec3 p, vec2 u) {
+  if (entry >= light_count)
+    return {sample_area_light(scene, scene.area_lights[entry - light_count], p, u), false};
+  const LightRecord& light = scene.lights[entry];
+  if (light.type == LightType::kSphere) return {sample_sphere_light(light, p, u), false};
+  return {sample_punctual_light(light, p), true};
+}
+
 // Unshadowed GGX specular from a sphere light by Karis' representative point with the widened
 // lobe's energy normalisation (seed 000 §5.2.1, Listings 5.1-5.2). Returns outgoing radiance.
 BOUNCE_HD inline vec3 sphere_light_specular(const LightRecord& light, const SurfaceHit& s, vec3 p,

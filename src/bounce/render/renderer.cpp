@@ -117,6 +117,9 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
       scene_data_.refresh(scene_, change.moved_meshes);
     else
       scene_data_.forget_motion();  // moved meshes of an earlier frame stand still now
+    // Light powers change with lights, emissive materials and the area of moved emitters.
+    if (change.everything || change.geometry() || change.lights || change.materials)
+      lights_ = LightPicker::build(scene_);
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;
@@ -149,8 +152,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
     const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
-    f.shadow_rays =
-        compute_direct(scene_data_.view(), tracer_, f.gbuffer, rays.origin, direct, f.direct);
+    f.shadow_rays = compute_direct(scene_data_.view(), lights_.view(), tracer_, f.gbuffer,
+                                   rays.origin, direct, f.direct);
     if (average) direct_average_.add(f.direct, settings.accumulate, rest);
   }
   f.frames_averaged = rest_frames_;

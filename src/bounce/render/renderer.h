@@ -14,6 +14,7 @@
 #include "bounce/core/timer.h"
 #include "bounce/render/denoiser.h"
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/light_picker.h"
 #include "bounce/render/technique.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
@@ -100,6 +101,7 @@ class Renderer {
   const Scene& scene_;
   Tracer& tracer_;
   SceneData scene_data_;  // the scene as the G-buffer and direct-light kernels read it
+  LightPicker lights_;    // lights by power: direct light's candidates in many-light scenes
   std::unique_ptr<Technique> technique_;
   Frame frame_;
   uint32_t frame_index_ = 0;

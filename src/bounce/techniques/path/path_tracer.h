@@ -97,19 +97,9 @@ BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& 
   const float pick_pdf = ps.lights.pmf[entry];
   if (!(pick_pdf > 0.0f)) return vec3(0.0f);
 
-  LightSample ls;
-  bool delta = false;
-  if (entry < ps.lights.light_count) {
-    const LightRecord& light = ps.scene.lights[entry];
-    if (light.type == LightType::kSphere) {
-      ls = sample_sphere_light(light, p, u);
-    } else {
-      ls = sample_punctual_light(light, p);
-      delta = true;
-    }
-  } else {
-    ls = sample_area_light(ps.scene, ps.scene.area_lights[entry - ps.lights.light_count], p, u);
-  }
+  const EntrySample sample = sample_light_entry(ps.scene, ps.lights.light_count, entry, p, u);
+  const LightSample& ls = sample.ls;
+  const bool delta = sample.delta;
   if (!ls.valid()) return vec3(0.0f);
   // BSDF sampling cannot find a point light; it finds area and sphere lights on its own.
   if (!delta && settings.strategy == LightStrategy::kBsdfOnly) return vec3(0.0f);

@@ -1,0 +1,136 @@
+// Direct light in scenes with many lights (direct_pixel_resampled): one shadow ray per light
+// sample whatever the light count, unbiased against the loop over every light, and less noisy
+// than picking lights by power alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "bounce/core/rng.h"
+#include "bounce/render/direct.h"
+#include "bounce/render/gbuffer.h"
+#include "bounce/render/light_picker.h"
+#include "bounce/scene/scene_data.h"
+#include "bounce/trace/tracer.h"
+#include "scene/hand_built_scenes.h"
+
+namespace bounce {
+namespace {
+
+constexpr int kSize = 32;
+
+// A 6 x 6 m white floor seen from above, under 40 point and spot lights of random power and
+// height, a few of them under the floor (they light nothing).
+Scene many_lights() {
+  Scene s;
+  s.source = "many lights";
+  Material white;
+  white.albedo = vec3(0.8f);
+  s.materials.push_back(white);
+  s.meshes.push_back(
+      scene_test::quad_mesh("floor", vec3(-3, 0, -3), vec3(0, 0, 6), vec3(6, 0, 0), 0));
+  Pcg32 rng(11);
+  for (int k = 0; k < 40; ++k) {
+    const vec3 at(6.0f * rng.next_float() - 3.0f,
+                  k % 10 == 0 ? -1.0f : 0.5f + 2.0f * rng.next_float(),
+                  6.0f * rng.next_float() - 3.0f);
+    const vec3 intensity = vec3(0.05f + rng.next_float(), 0.05f + rng.next_float(), 0.5f);
+    s.lights.push_back(k % 4 == 0 ? Light::spot(at, vec3(0, -1, 0), intensity, 20.0f, 40.0f)
+                                  : Light::point(at, intensity));
+  }
+  s.camera.position = vec3(0.0f, 5.0f, 0.0f);
+  s.camera.look_at = vec3(0.0f);
+  s.camera.up = vec3(0.0f, 0.0f, 1.0f);
+  s.camera.vfov_deg = 60.0f;
+  s.has_camera = true;
+  s.finalize();
+  return s;
+}
+
+struct LitFloor {
+  Scene scene = many_lights();
+  SceneData data = SceneData::from(scene);
+  std::unique_ptr<Tracer> tracer = make_embree_tracer(scene);
+  LightPicker picker = LightPicker::build(scene);
+  GBuffer g;
+  LitFloor() {
+    g.resize(kSize, kSize);
+    build_gbuffer(data.view(), *tracer, CameraRays::from(scene.camera, kSize, kSize), vec2(0.5f),
+                  g);
+  }
+  Image direct(const DirectSettings& settings, uint64_t* rays = nullptr) const {
+    Image out(kSize, kSize);
+    const uint64_t traced = compute_direct(data.view(), picker.view(), *tracer, g,
+                                           scene.camera.position, settings, out);
+    if (rays) *rays = traced;
+    return out;
+  }
+};
+
+// The loop over every light: exact for point and spot lights.
+DirectSettings looped() {
+  DirectSettings s;
+  s.light_samples = 1;
+  s.max_looped_lights = 1000;
+  return s;
+}
+DirectSettings resampled(int candidates, uint32_t frame) {
+  DirectSettings s;
+  s.light_samples = 1;
+  s.max_looped_lights = 0;
+  s.candidates = candidates;
+  s.frame = frame;
+  return s;
+}
+
+double rms_error(const Image& a, const Image& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.pixel_count(); ++i) {
+    const vec3 d = a.pixels()[i] - b.pixels()[i];
+    sum += double(glm::dot(d, d));
+  }
+  return std::sqrt(sum / double(a.pixel_count()));
+}
+
+TEST(ManyLights, OneShadowRayPerLightSample) {
+  const LitFloor floor_;
+  uint64_t looped_rays = 0, resampled_rays = 0;
+  floor_.direct(looped(), &looped_rays);
+  floor_.direct(resampled(8, 0), &resampled_rays);
+  EXPECT_LE(resampled_rays, uint64_t(kSize * kSize));
+  EXPECT_GT(looped_rays, 20 * resampled_rays);
+}
+
+TEST(ManyLights, ResamplingConvergesToTheLoopOverEveryLight) {
+  const LitFloor floor_;
+  const Image exact = floor_.direct(looped());
+  constexpr int kFrames = 512;
+  Image mean(kSize, kSize, vec3(0.0f));
+  for (uint32_t f = 0; f < kFrames; ++f) mean += floor_.direct(resampled(8, f));
+  mean *= 1.0f / float(kFrames);
+  // Blocks of 8x8 pixels: their means agree within 2%.
+  for (int by = 0; by < kSize; by += 8)
+    for (int bx = 0; bx < kSize; bx += 8) {
+      vec3 e(0.0f), m(0.0f);
+      for (int y = by; y < by + 8; ++y)
+        for (int x = bx; x < bx + 8; ++x) {
+          e += exact.at(x, y);
+          m += mean.at(x, y);
+        }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], 0.02f * e[c]) << bx << "," << by;
+    }
+}
+
+TEST(ManyLights, CandidatesWeighedByContributionBeatPickingByPower) {
+  const LitFloor floor_;
+  const Image exact = floor_.direct(looped());
+  double error_power = 0.0, error_resampled = 0.0;
+  for (uint32_t f = 0; f < 16; ++f) {
+    error_power += rms_error(floor_.direct(resampled(1, f)), exact);
+    error_resampled += rms_error(floor_.direct(resampled(8, f)), exact);
+  }
+  EXPECT_LT(error_resampled, 0.75 * error_power);
+}
+
+}  // namespace
+}  // namespace bounce
