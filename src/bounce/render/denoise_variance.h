@@ -52,19 +52,26 @@ struct BoxPass {
   int width = 0;
 };
 
+// What one pixel adds to the box sums: its moments (direct m1, m2, indirect m1, m2) and a count
+// of 1, or nothing where it has no surface.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moments(const HistoryTexel& t, float depth, float m[5]) {
+  const float on = depth > 0.0f ? 1.0f : 0.0f;
+  m[0] = on * luminance_of(vec3(t.direct));
+  m[1] = on * t.direct.w;
+  m[2] = on * luminance_of(vec3(t.indirect));
+  m[3] = on * t.indirect.w;
+  m[4] = on;
+}
+
 // Row sums at pixel x of the row starting at index `row`.
 BOUNCE_HD inline void box_row_pixel(const BoxPass& p, size_t row, int x) {
   float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   for (int qx = glm::max(x - kVarianceBox, 0); qx <= glm::min(x + kVarianceBox, p.width - 1);
        ++qx) {
     const size_t q = row + size_t(qx);
-    if (!(p.depth[q] > 0.0f)) continue;
-    const HistoryTexel& t = p.history[q];
-    s[0] += luminance_of(vec3(t.direct));
-    s[1] += t.direct.w;
-    s[2] += luminance_of(vec3(t.indirect));
-    s[3] += t.indirect.w;
-    s[4] += 1.0f;
+    float m[5];
+    box_moments(p.history[q], p.depth[q], m);
+    for (int k = 0; k < 5; ++k) s[k] += m[k];
   }
   for (int k = 0; k < 5; ++k) p.sums[k][row + size_t(x)] = s[k];
 }
@@ -80,22 +87,31 @@ struct VariancePass {
   float cap_indirect = 0.0f;
 };
 
-// Where pixel (x, y)'s history is short, replaces its variance by the box estimate divided by the
-// frames averaged.
+// The box estimate at pixel i from its box sums `s`: where the history is short (and there is a
+// surface), the variance of the box's moments divided by the frames averaged replaces the
+// pixel's own; elsewhere the pixel keeps it. Branch-free, so a row loop vectorises.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void box_variance(const VariancePass& p, size_t i,
+                                                  const float s[5]) {
+  const float frames = p.length[i] + 1.0f;
+  const bool short_history = (frames < kShortHistory) & (p.depth[i] > 0.0f);
+  const float inv = 1.0f / (s[4] > 0.0f ? s[4] : 1.0f);
+  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
+  const float var_d = glm::max(m2_d - m1_d * m1_d, 0.0f) / frames;
+  const float var_i = glm::max(m2_i - m1_i * m1_i, 0.0f) / glm::min(frames, p.cap_indirect + 1.0f);
+  p.var_direct[i] = short_history ? var_d : p.var_direct[i];
+  p.var_indirect[i] = short_history ? var_i : p.var_indirect[i];
+}
+
+// Pixel (x, y): the column sum of BoxPass's row sums, then box_variance.
 BOUNCE_HD inline void spatial_variance_pixel(const VariancePass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  const float frames = p.length[i] + 1.0f;
-  if (!(frames < kShortHistory) || !(p.depth[i] > 0.0f)) return;
   float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   for (int qy = glm::max(y - kVarianceBox, 0); qy <= glm::min(y + kVarianceBox, p.height - 1);
        ++qy) {
     const size_t q = size_t(qy) * size_t(p.width) + size_t(x);
     for (int c = 0; c < 5; ++c) s[c] += p.sums[c][q];
   }
-  const float inv = 1.0f / s[4];
-  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
-  p.var_direct[i] = glm::max(m2_d - m1_d * m1_d, 0.0f) / frames;
-  p.var_indirect[i] = glm::max(m2_i - m1_i * m1_i, 0.0f) / glm::min(frames, p.cap_indirect + 1.0f);
+  box_variance(p, i, s);
 }
 
 }  // namespace bounce::denoise

@@ -185,6 +185,47 @@ void compute_depth_slope(const float* depth, int w, int h, float* slope) {
   });
 }
 
+// The spatial variance's row sums for row y (denoise_variance.h), on the CPU: each pixel's
+// moments once into a padded row, then each box as a sum over that row, in a loop the compiler
+// vectorises (box_row_pixel gathers its box's texels per pixel instead).
+void box_row(const denoise::BoxPass& p, int y) {
+  constexpr int r = denoise::kVarianceBox;
+  const size_t n = size_t(p.width) + 2 * r;
+  thread_local std::vector<float> moments;
+  moments.assign(5 * n, 0.0f);
+  const size_t row = size_t(y) * size_t(p.width);
+  for (int x = 0; x < p.width; ++x) {
+    float m[5];
+    denoise::box_moments(p.history[row + size_t(x)], p.depth[row + size_t(x)], m);
+    for (int k = 0; k < 5; ++k) moments[size_t(k) * n + size_t(x + r)] = m[k];
+  }
+  for (int k = 0; k < 5; ++k) {
+    const float* m = moments.data() + size_t(k) * n;
+    float* out = p.sums[k] + row;
+#pragma GCC ivdep
+    for (int x = 0; x < p.width; ++x) {
+      float s = 0.0f;
+      for (int d = 0; d <= 2 * r; ++d) s += m[x + d];
+      out[x] = s;
+    }
+  }
+}
+
+// The spatial variance of row y: the column sums of the row sums, then box_variance, over the
+// row in a loop the compiler vectorises.
+void box_column(const denoise::VariancePass& p, int y) {
+  constexpr int r = denoise::kVarianceBox;
+  const int y0 = std::max(y - r, 0), y1 = std::min(y + r, p.height - 1);
+  const size_t w = size_t(p.width), row = size_t(y) * w;
+#pragma GCC ivdep
+  for (size_t x = 0; x < w; ++x) {
+    float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    for (int qy = y0; qy <= y1; ++qy)
+      for (int k = 0; k < 5; ++k) s[k] += p.sums[k][size_t(qy) * w + x];
+    denoise::box_variance(p, row + x, s);
+  }
+}
+
 // Runs `iterations` a-trous passes from `pass`'s inputs: over direct light alone, or over both
 // lights together (`both`, sharing the geometric weights). outputs(k, pass) points pass k's
 // outputs at their planes. Returns the pass whose inputs are the results.
@@ -483,7 +524,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     box.width = w;
     for_rows(h, [&](int y) {
       if (!b.row_box[size_t(y)]) return;
-      for (int x = 0; x < w; ++x) denoise::box_row_pixel(box, size_t(y) * size_t(w), x);
+      box_row(box, y);
     });
     denoise::VariancePass variance;
     variance.depth = depth;
@@ -496,7 +537,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     variance.cap_indirect = cap_indirect;
     for_rows(h, [&](int y) {
       if (!b.row_short[size_t(y)]) return;
-      for (int x = 0; x < w; ++x) denoise::spatial_variance_pixel(variance, x, y);
+      box_column(variance, y);
     });
   }
   // The a-trous passes: direct light (with indirect light when both share the passes), then
