@@ -1,0 +1,116 @@
+#include "bounce/scene/quake/map_textures.h"
+
+#include <algorithm>
+
+#include "bounce/core/error.h"
+#include "bounce/core/image_io.h"
+
+namespace bounce::quake {
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;
+  return s;
+}
+
+std::string without_extension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  return dot != std::string::npos && (slash == std::string::npos || dot > slash)
+             ? path.substr(0, dot)
+             : path;
+}
+
+// The entry names the game would try for an image path: as written, then .tga and .jpg.
+std::vector<std::string> candidates(const std::string& image) {
+  const std::string stem = without_extension(image);
+  std::vector<std::string> out;
+  if (stem != image) out.push_back(image);
+  out.push_back(stem + ".tga");
+  out.push_back(stem + ".jpg");
+  return out;
+}
+
+bool try_load(const Pk3Set& archives, const std::string& entry, int max_size, SurfaceImage& out) {
+  const Pk3Archive* a = archives.find(entry);
+  if (!a) return false;
+  try {
+    const std::vector<uint8_t> bytes = a->read(entry);
+    Image image = decode_image(a->path() + ":" + entry, bytes.data(), bytes.size());
+    out.texture.name = entry;
+    out.texture.width = image.width();
+    out.texture.height = image.height();
+    out.texture.texels = std::move(image.pixels());
+    shrink_texture(out.texture, max_size);
+    vec3 sum(0.0f);
+    for (const vec3& t : out.texture.texels) sum += t;
+    out.average = sum / float(std::max<size_t>(out.texture.texels.size(), 1));
+    out.found = true;
+    out.source = a->path() + ":" + entry;
+    return true;
+  } catch (const Error& e) {
+    warn(e.what());
+    return false;
+  }
+}
+
+}  // namespace
+
+ShaderTable read_shaders(const Pk3Set& archives, size_t* script_count) {
+  ShaderTable table;
+  size_t scripts = 0;
+  for (const auto& a : archives.archives()) {
+    for (const auto& name : a.names()) {
+      const std::string l = lower(name);
+      if (!l.starts_with("scripts/") || !l.ends_with(".shader")) continue;
+      try {
+        const std::vector<uint8_t> bytes = a.read(name);
+        parse_shader_script(std::string(bytes.begin(), bytes.end()), a.path() + ":" + name, table);
+        ++scripts;
+      } catch (const Error& e) {
+        warn(e.what());
+      }
+    }
+  }
+  if (script_count) *script_count = scripts;
+  return table;
+}
+
+SurfaceImage find_surface_image(const Pk3Set& archives, const ShaderInfo* shader,
+                                const std::string& name, int max_size) {
+  SurfaceImage out;
+  std::vector<std::string> images;
+  if (shader && !shader->image.empty()) images.push_back(shader->image);
+  images.push_back(name);
+  if (shader && !shader->editor_image.empty()) images.push_back(shader->editor_image);
+  for (const auto& image : images)
+    for (const auto& entry : candidates(image))
+      if (try_load(archives, entry, max_size, out)) return out;
+  return out;
+}
+
+void shrink_texture(Texture& t, int max_size) {
+  max_size = std::max(max_size, 1);
+  while (t.width > max_size || t.height > max_size) {
+    const int w = std::max(t.width / 2, 1), h = std::max(t.height / 2, 1);
+    std::vector<vec3> out(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        vec3 sum(0.0f);
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const int sx = std::min(2 * x + dx, t.width - 1),
+                      sy = std::min(2 * y + dy, t.height - 1);
+            sum += t.texels[size_t(sy) * size_t(t.width) + size_t(sx)];
+          }
+        out[size_t(y) * size_t(w) + size_t(x)] = 0.25f * sum;
+      }
+    }
+    t.texels = std::move(out);
+    t.width = w;
+    t.height = h;
+  }
+}
+
+}  // namespace bounce::quake
