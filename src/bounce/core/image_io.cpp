@@ -462,14 +462,6 @@ Image load_image(const std::string& path) {
   return decode_ldr(path, bytes);
 }
 
-Image decode_image(const std::string& name, const unsigned char* data, size_t size) {
-  const std::string ext = lower_extension(name);
-  if (!is_ldr_extension(ext))
-    fail("cannot read {}: {} (expected .png, .jpg, .jpeg, .tga or .bmp)", name,
-         describe_extension(ext));
-  return decode_ldr(name, Bytes(data, data + size));
-}
-
 void save_image(const std::string& path, const Image& image, float exposure_ev) {
   const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".exr" && ext != ".pfm") {

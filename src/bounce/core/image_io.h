@@ -15,10 +15,6 @@ namespace bounce {
 // channels, .pfm reads colour ("PF") and greyscale ("Pf") files.
 Image load_image(const std::string& path);
 
-// Decodes an 8-bit image (.png, .jpg, .jpeg, .tga, .bmp, chosen by the extension of `name`) held
-// in memory, as load_image does a file: what archive readers need. Errors name `name`.
-Image decode_image(const std::string& name, const unsigned char* data, size_t size);
-
 // Saves an image by extension: .png is scaled by 2^exposure_ev, clamped and sRGB-encoded to 8 bits;
 // .exr (32-bit float R, G, B, ZIP) and .pfm are linear and unclamped, ignoring the exposure.
 void save_image(const std::string& path, const Image& image, float exposure_ev = 0.0f);

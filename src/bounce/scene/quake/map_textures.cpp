@@ -2,8 +2,15 @@
 
 #include <algorithm>
 
+// libstb ships the compiled implementation (linked through core), so only the declarations are
+// included here.
+#include <stb/stb_image.h>
+
+#include <array>
+#include <memory>
+
+#include "bounce/core/color.h"
 #include "bounce/core/error.h"
-#include "bounce/core/image_io.h"
 
 namespace bounce::quake {
 
@@ -32,16 +39,45 @@ std::vector<std::string> candidates(const std::string& image) {
   return out;
 }
 
+struct StbFree {
+  void operator()(unsigned char* p) const { stbi_image_free(p); }
+};
+
+// Decodes a .tga or .jpg held in memory to linear RGB (the images are sRGB); throws Error.
+void decode(const std::string& name, const std::vector<uint8_t>& bytes, Texture& out) {
+  if (bytes.size() > size_t(INT32_MAX)) fail("{}: the image is too large", name);
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, StbFree> pixels(
+      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3));
+  if (!pixels) {
+    const char* reason = stbi_failure_reason();
+    fail("{}: corrupt or unsupported image{}", name,
+         reason && *reason ? fmt::format(" (stb_image: {})", reason) : std::string());
+  }
+  if (w <= 0 || h <= 0 || int64_t(w) * h > (int64_t(1) << 26))
+    fail("{}: image size {} x {} is out of range", name, w, h);
+  static const std::array<float, 256> to_linear = [] {
+    std::array<float, 256> t;
+    for (int i = 0; i < 256; ++i) t[size_t(i)] = srgb_decode(float(i) / 255.0f);
+    return t;
+  }();
+  out.width = w;
+  out.height = h;
+  out.texels.resize(size_t(w) * size_t(h));
+  const unsigned char* p = pixels.get();
+  for (vec3& t : out.texels) {
+    t = vec3(to_linear[p[0]], to_linear[p[1]], to_linear[p[2]]);
+    p += 3;
+  }
+}
+
 bool try_load(const Pk3Set& archives, const std::string& entry, int max_size, SurfaceImage& out) {
   const Pk3Archive* a = archives.find(entry);
   if (!a) return false;
   try {
     const std::vector<uint8_t> bytes = a->read(entry);
-    Image image = decode_image(a->path() + ":" + entry, bytes.data(), bytes.size());
+    decode(a->path() + ":" + entry, bytes, out.texture);
     out.texture.name = entry;
-    out.texture.width = image.width();
-    out.texture.height = image.height();
-    out.texture.texels = std::move(image.pixels());
     shrink_texture(out.texture, max_size);
     vec3 sum(0.0f);
     for (const vec3& t : out.texture.texels) sum += t;

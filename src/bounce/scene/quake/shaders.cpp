@@ -124,6 +124,7 @@ ShaderInfo read_shader(Tokens& t, const std::string& file) {
       bool additive = false;
       read_stage(t, info, &additive, file);
       any_stage = true;
+      ++info.stages;
       all_additive = all_additive && additive;
       continue;
     }

@@ -25,6 +25,7 @@ struct ShaderInfo {
   float surface_light = 0.0f;
   std::optional<Sun> sun;
   bool sky = false, nodraw = false, fog = false;
+  int stages = 0;         // rendering stages ({ ... } blocks)
   bool decal = false;     // polygonOffset: drawn over another surface
   bool additive = false;  // every stage adds to what is behind it: a glow, not matter
 };

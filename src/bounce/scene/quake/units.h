@@ -4,15 +4,17 @@
 // the common convention for Quake-family maps).
 // Frame: Quake is Z-up and right-handed; bounce is Y-up and right-handed. (x, y, z) in Quake goes
 // to (x, z, -y): a rotation of -90 degrees about x, so handedness and winding are kept.
-// Light: q3map, the light compiler, writes lightmap values on a 0..255 scale, 255 being a
-// texture shown at full brightness. We take that as a white Lambertian surface reflecting
-// radiance 1 W/(sr m^2), i.e. irradiance pi W/m^2 per 255 lightmap steps. Its point lights add
-// light * 7500 / d^2 * cos (d in units; q3map and q3map2's pointScale 7500), which for our
-// inverse-square point light gives a radiant intensity of
-//   I = light * 7500 * (pi / 255) * 0.0254^2 W/sr   (about 0.0596 W/sr per unit of "light").
+// Light: q3map, the light compiler, writes lightmap values on a 0..255 scale, and Quake 3 shows
+// them with two overbright bits (r_mapOverBrightBits 2: the lightmap is scaled by 4, through the
+// lightmap bytes and the display gamma ramp), so a lightmap value of 255 / 4 shows a texture at
+// its full brightness. We take that as a white Lambertian surface reflecting radiance
+// 1 W/(sr m^2): irradiance pi W/m^2 per 63.75 lightmap steps. q3map's point lights add
+// light * 7500 / d^2 * cos (d in units; pointScale 7500 in q3map and q3map2), which for our
+// inverse-square point light is a radiant intensity of
+//   I = light * 7500 * (pi / 63.75) * 0.0254^2 W/sr   (about 0.24 W/sr per unit of "light").
 // Surface lights add value * 0.75 * (form factor) (q3map2's areaScale 0.25 times its
-// formFactorValueScale 3), which is an emitted radiance of 0.75 * value / 255 W/(sr m^2).
-// A sun (q3map_sun) adds intensity * cos: irradiance pi * intensity / 255 W/m^2.
+// formFactorValueScale 3): an emitted radiance of 0.75 * value / 63.75 W/(sr m^2).
+// A sun (q3map_sun) adds intensity * cos: irradiance pi * intensity / 63.75 W/m^2.
 #pragma once
 
 #include "bounce/core/math.h"
@@ -21,7 +23,7 @@ namespace bounce::quake {
 
 constexpr float kMetresPerUnit = 0.0254f;
 constexpr float kPointScale = 7500.0f;
-constexpr float kLightmapFull = 255.0f;
+constexpr float kLightmapFull = 255.0f / 4.0f;
 constexpr float kAreaLightScale = 0.25f * 3.0f;
 // The eye above a player's origin (Quake 3's DEFAULT_VIEWHEIGHT) and its default field of view:
 // 90 degrees across a 4:3 screen, 73.74 degrees vertically.
