@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bounce/core/error.h"
 #include "bounce/scene/quake/patch.h"
 
 namespace bounce::quake {
@@ -90,7 +91,7 @@ TEST(BspPatch, FacesSharingAReversedBorderGiveIdenticalVertices) {
     tessellate_patch(left, 3, 5, level, a);
     tessellate_patch(right, 3, 5, level, b);
     std::set<Key> from_a;
-    const int columns = 2 * 0 + level + 1;  // one patch across
+    const int columns = level + 1;  // one patch across
     for (int r = 0; r < 2 * level + 1; ++r)
       from_a.insert(key(a.vertices[size_t(r * columns + level)].position));
     int matched = 0;

@@ -135,7 +135,9 @@ TEST(LoadBsp, SpawnCameraStandsAtEyeHeightAndLooksAlongItsAngle) {
 
   QuakeOptions missing;
   missing.spawn = 5;
+  testing::internal::CaptureStderr();
   const std::string e = error_of([&] { load(b.bytes(), missing); });
+  testing::internal::GetCapturedStderr();
   EXPECT_TRUE(contains(e, "spawn point 5")) << e;
 }
 

@@ -66,7 +66,7 @@ class Reader {
             "{}: lump '{}' (bytes {} to {}) lies outside the file ({} bytes); the file is "
             "truncated or corrupt",
             name_, lump_name(l), offset, offset + length, bytes_.size());
-      lumps_[size_t(l)] = {bytes_.data() + offset, size_t(length)};
+      if (length > 0) lumps_[size_t(l)] = {bytes_.data() + offset, size_t(length)};
     }
   }
 
