@@ -52,12 +52,12 @@ std::vector<uint8_t> read_file_bytes(const std::string& path) {
 }
 
 // Why a face is not drawn, or null when it is.
-// A sky that glows (q3map_surfacelight) is kept as an emitter: it lights the level as q3map's
-// sky light does. Other skies are holes (their sun, if any, shines through). A fog volume's
-// surface is drawn only when its shader has stages (lava and slime are fog volumes too).
+// Skies are holes: their sun (q3map_sun), if any, shines through as a directional light. A
+// sky's own glow (q3map_surfacelight) is dropped: kept as an emitter it would be seen as a
+// glowing wall, not as the sky box the game draws. A fog volume's surface is drawn only when
+// its shader has stages (lava and slime are fog volumes too).
 const char* skip_reason(const BspTexture& t, const ShaderInfo* s) {
-  const bool glowing = s && s->surface_light > 0.0f;
-  if (t.surface_flags & kSurfSky || (s && s->sky)) return glowing ? nullptr : "sky";
+  if (t.surface_flags & kSurfSky || (s && s->sky)) return "sky";
   if (t.surface_flags & (kSurfNoDraw | kSurfHint | kSurfSkip) || (s && s->nodraw)) return "nodraw";
   if ((t.content_flags & kContentsFog || (s && s->fog)) && !(s && s->stages > 0)) return "fog";
   if (s && s->decal) return "decal";
@@ -247,8 +247,7 @@ QuakeMap load_quake_bsp(std::span<const uint8_t> bytes, const std::string& name,
     if (seen[size_t(f.texture)]) continue;
     seen[size_t(f.texture)] = true;
     const ShaderInfo* s = b.shader(f.texture);
-    // A glowing sky is kept as geometry and would shade its own sun: the sky light wins.
-    if (!s || !s->sun || !(s->sun->intensity > 0.0f) || s->surface_light > 0.0f) continue;
+    if (!s || !s->sun || !(s->sun->intensity > 0.0f)) continue;
     const float az = glm::radians(s->sun->azimuth_deg), el = glm::radians(s->sun->elevation_deg);
     const vec3 towards(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
     Light sun = Light::directional(direction_from_quake(-towards),
