@@ -151,6 +151,52 @@ TEST(LoadBsp, ABareBspFileLoadsThroughTheSceneSpec) {
   EXPECT_TRUE(scene.has_camera);  // framed from the bounds: the map has no spawn point
 }
 
+// A 2 x 2 uncompressed 24-bit TGA, top row first: red, green / blue, white.
+std::string tiny_tga() {
+  std::string t(18, '\0');
+  t[2] = 2;   // uncompressed true colour
+  t[12] = 2;  // width
+  t[14] = 2;  // height
+  t[16] = 24;
+  t[17] = 0x20;  // rows stored top first
+  const unsigned char bgr[12] = {0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255};
+  t.append(reinterpret_cast<const char*>(bgr), 12);
+  return t;
+}
+
+TEST(LoadBsp, MapInAnArchiveFindsItsTgaTextureAndLoadsFromASceneFile) {
+  TempDir dir;
+  dir.write("maps.pk3", stored_zip({{"maps/room.bsp", BspBuild::floor().bytes()}}));
+  dir.write("textures.pk3", stored_zip({{"textures/test/floor.tga", tiny_tga()}}));
+  const Scene direct = load_scene(dir.file("maps.pk3") + ":maps/room.bsp");
+  ASSERT_EQ(direct.materials.size(), 1u);
+  ASSERT_EQ(direct.materials[0].albedo_texture, 0);  // found in the sibling archive
+  const Texture& t = direct.textures[0];
+  ASSERT_EQ(t.width, 2);
+  ASSERT_EQ(t.height, 2);
+  expect_near(t.texels[0], vec3(1, 0, 0), 1e-6f);  // top-left is red
+  expect_near(t.texels[3], vec3(1, 1, 1), 1e-6f);
+
+  // A scene file places the map like a model, with its archive relative to the file.
+  const std::string scene_file =
+      dir.write("level.bounce.json",
+                R"({"models": [{"file": "maps.pk3:maps/room.bsp", "translate": [0, 1, 0],
+                      "patch_level": 2}]})");
+  const Scene placed = load_scene(scene_file);
+  ASSERT_EQ(placed.triangle_count(), 2u);
+  EXPECT_EQ(placed.materials[0].albedo_texture, 0);
+  EXPECT_NEAR(placed.bounds.lo.y, 1.0f, 1e-6f);
+
+  const std::string bad = dir.write(
+      "bad.bounce.json", R"({"models": [{"builtin": "cornell", "archives": ["x.pk3"]}]})");
+  const std::string e = error_of([&] { load_scene(bad); });
+  EXPECT_TRUE(contains(e, "'archives' applies only to Quake 3 maps")) << e;
+  const std::string missing =
+      dir.write("missing.bounce.json", R"({"models": [{"file": "maps.pk3:maps/other.bsp"}]})");
+  const std::string e2 = error_of([&] { load_scene(missing); });
+  EXPECT_TRUE(contains(e2, "no entry 'maps/other.bsp'")) << e2;
+}
+
 // --- Malformed files: each error names the file and the lump.
 
 TEST(LoadBsp, BadMagicVersionAndShortHeader) {

@@ -347,6 +347,11 @@ Scene load_map_model(const Object& o, const std::string& file, Resolve resolve) 
 Scene load_model(const Object& o, const std::string& file, const fs::path& dir) {
   if (o.has("file") == o.has("builtin"))
     fail("{}: {}: give exactly one of 'file' and 'builtin'", file, o.where());
+  const bool is_map = o.has("file") && quake::is_quake_spec(o.string("file"));
+  for (const char* key : {"archives", "patch_level", "spawn"})
+    if (o.has(key) && !is_map)
+      fail("{}: {}: '{}' applies only to Quake 3 maps (ARCHIVE.pk3:maps/NAME.bsp or .bsp)", file,
+           o.where(), key);
   if (o.has("builtin")) {
     const std::string name = o.string("builtin");
     if (!is_builtin_scene(name))
@@ -364,10 +369,6 @@ Scene load_model(const Object& o, const std::string& file, const fs::path& dir) 
     return fs::path(n).is_absolute() ? fs::path(n) : dir / n;
   };
   if (quake::is_quake_spec(name)) return load_map_model(o, file, resolve);
-  for (const char* key : {"archives", "patch_level", "spawn"})
-    if (o.has(key))
-      fail("{}: {}: '{}' applies only to Quake 3 maps (ARCHIVE.pk3:maps/NAME.bsp or .bsp)", file,
-           o.where(), key);
   const fs::path path = resolve(name);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
