@@ -119,7 +119,7 @@ TEST(OpenArenaMaps, TexturesAndLightsComeFromTheArchives) {
 }
 
 // Random byte flips and truncations of a real map, parsed from memory: every case either loads
-// or throws bounce::Error; none may crash (run under the asan preset too).
+// or throws bounce::Error; none may crash (also meant for the asan preset).
 TEST(OpenArenaMaps, FuzzedMapsLoadOrFailCleanly) {
   SKIP_WITHOUT_OPENARENA();
   const std::vector<uint8_t> original = quake::Pk3Archive(kMaps).read("maps/oa_ctf2.bsp");
