@@ -7,11 +7,14 @@ packages=(
   build-essential cmake pkg-config git clang-format
   libembree-dev libtbb-dev libglm-dev
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
-  libopenexr-dev libcli11-dev libfmt-dev
+  libopenexr-dev libcli11-dev libfmt-dev libzip-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
   libglfw3-dev libimgui-dev libepoxy-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
+  # Quake 3 levels for tests and benchmarks: the maps, their textures, and openarena-data for
+  # the shader scripts (pak0.pk3) that make most of their lights.
+  openarena-081-maps openarena-081-textures openarena-data
 )
 
 missing=()

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "bounce/scene/load.h"
+#include "bounce/scene/quake/load_quake.h"
 #include "bounce/trace/tracer.h"
 #include "options.h"
 
@@ -38,8 +39,32 @@ void print_light(const Light& l) {
   }
 }
 
+// What a Quake 3 map held, beyond what every scene shows.
+void print_quake_stats(const quake::QuakeStats& s) {
+  fmt::print(
+      "map faces   {} polygons, {} patches, {} meshes, {} billboards (skipped); {} not drawn "
+      "(sky, nodraw, fog, decals, glows)\n",
+      s.faces_by_type[1], s.faces_by_type[2], s.faces_by_type[3], s.faces_by_type[4],
+      s.faces_skipped);
+  fmt::print("map patches {} Bezier patches, {} triangles\n", s.patches, s.patch_triangles);
+  fmt::print("map lights  {} point, {} spot, {} sun; {} glowing shaders\n", s.point_lights,
+             s.spot_lights, s.suns, s.surface_light_shaders);
+  fmt::print("map images  {} found, {} missing, from {} archives ({} shaders)\n", s.textures,
+             s.textures_missing, s.archives, s.shaders);
+  fmt::print("map spawns  {}\n", s.spawn_points);
+}
+
 void run_info(const std::string& spec) {
-  const Scene scene = load_scene(spec);
+  quake::QuakeStats quake_stats;
+  const bool is_map = quake::is_quake_spec(spec);
+  const Scene scene = [&] {
+    if (!is_map) return load_scene(spec);
+    quake::QuakeMap map = quake::load_quake_map(spec);
+    quake_stats = map.stats;
+    map.scene.source = spec;
+    map.scene.finalize();
+    return std::move(map.scene);
+  }();
   size_t vertices = 0;
   for (const auto& m : scene.meshes) vertices += m.positions.size();
   fmt::print("scene       {}\n", scene.source);
@@ -58,7 +83,11 @@ void run_info(const std::string& spec) {
       c.position.x, c.position.y, c.position.z, c.look_at.x, c.look_at.y, c.look_at.z, c.vfov_deg);
   fmt::print("lights      {} (+ {} area lights from emissive triangles)\n", scene.lights.size(),
              scene.area_lights.size());
-  for (const auto& l : scene.lights) print_light(l);
+  if (is_map) print_quake_stats(quake_stats);
+  // Levels have hundreds of lights: list the first few.
+  constexpr size_t kListed = 12;
+  for (size_t i = 0; i < scene.lights.size() && i < kListed; ++i) print_light(scene.lights[i]);
+  if (scene.lights.size() > kListed) fmt::print("  ... {} more\n", scene.lights.size() - kListed);
   for (const auto& a : scene.area_lights)
     fmt::print("  area '{}': {} triangles, {:.4g} m^2, radiance ({:.4g}, {:.4g}, {:.4g})\n", a.name,
                a.triangles.size(), a.area, a.radiance.x, a.radiance.y, a.radiance.z);

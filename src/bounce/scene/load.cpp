@@ -9,14 +9,15 @@
 #include <system_error>
 
 #include "bounce/core/error.h"
+#include "bounce/scene/quake/load_quake.h"
 
 namespace bounce {
 
 namespace {
 
 constexpr const char* kAcceptedForms =
-    "a scene is 'cornell', 'cubes:N', 'cubes:N:SEED', 'leak', or a .obj, .gltf, .glb or "
-    ".bounce.json (.json) file";
+    "a scene is 'cornell', 'cubes:N', 'cubes:N:SEED', 'leak', a .obj, .gltf, .glb, .bsp or "
+    ".bounce.json (.json) file, or a Quake 3 map in an archive (ARCHIVE.pk3:maps/NAME.bsp)";
 
 // More cubes than this would need several GiB; a typo such as an extra zero should not do that.
 constexpr uint32_t kMaxCubes = 10'000'000;
@@ -96,6 +97,7 @@ Scene make_builtin_scene(const std::string& spec) {
 }
 
 Scene load_model_file(const std::string& path) {
+  if (quake::is_quake_spec(path)) return quake::load_quake_map(path).scene;
   switch (file_kind(path)) {
     case FileKind::kObj:
       return load_obj(path);
@@ -106,7 +108,8 @@ Scene load_model_file(const std::string& path) {
     case FileKind::kUnknown:
       break;
   }
-  fail("{}: unknown model file type (expected .obj, .gltf or .glb)", path);
+  fail("{}: unknown model file type (expected .obj, .gltf, .glb, .bsp or ARCHIVE.pk3:MAP.bsp)",
+       path);
 }
 
 Scene load_scene(const std::string& spec) {
@@ -114,6 +117,12 @@ Scene load_scene(const std::string& spec) {
   if (is_builtin_scene(spec)) {
     Scene scene = make_builtin_scene(spec);
     scene.source = spec;
+    return scene;
+  }
+  if (quake::is_quake_spec(spec)) {
+    Scene scene = quake::load_quake_map(spec).scene;
+    scene.source = spec;
+    scene.finalize();
     return scene;
   }
   const FileKind kind = file_kind(spec);

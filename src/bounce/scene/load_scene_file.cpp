@@ -3,6 +3,8 @@
 // The format is documented in docs/scene-format.md. The reader is strict: unknown keys, wrong
 // types, wrong array lengths, missing fields and non-finite numbers are errors naming the key
 // and where it is, so that a typo cannot silently change the scene.
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -15,6 +17,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/scene/load.h"
+#include "bounce/scene/quake/load_quake.h"
 
 namespace bounce {
 
@@ -297,10 +300,58 @@ TrsTrack parse_light_animation(const Object& o, const Light& light, const std::s
   return track;
 }
 
+// A Quake 3 map model: "file" is ARCHIVE.pk3:maps/NAME.bsp or a .bsp file (paths relative to
+// the scene file), "archives" more .pk3 files for textures, "patch_level" and "spawn" as in
+// quake::QuakeOptions.
+template <typename Resolve>
+Scene load_map_model(const Object& o, const std::string& file, Resolve resolve) {
+  const std::string name = o.string("file");
+  quake::QuakeOptions options;
+  if (o.has("archives")) {
+    const json& list = o.at("archives");
+    if (!list.is_array())
+      fail("{}: {}: 'archives' must be an array of .pk3 file names", file, o.where());
+    for (const json& a : list) {
+      if (!a.is_string() || a.get<std::string>().empty())
+        fail("{}: {}: 'archives' must be an array of .pk3 file names", file, o.where());
+      options.archives.push_back(resolve(a.get<std::string>()).string());
+    }
+  }
+  const auto whole = [&](const char* key, int lo, int hi, int fallback) {
+    if (!o.has(key)) return fallback;
+    const double v = o.number(key);
+    if (v != std::floor(v) || v < lo || v > hi)
+      fail("{}: {}: '{}' must be a whole number in [{}, {}]", file, o.where(), key, lo, hi);
+    return int(v);
+  };
+  options.patch_level = whole("patch_level", 1, 64, options.patch_level);
+  options.spawn = whole("spawn", 0, 1 << 20, 0);
+  // The archive (or .bsp) part of the spec is relative to the scene file like any file.
+  const std::string lower_name = [&] {
+    std::string l = name;
+    for (char& c : l) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  }();
+  const size_t at = lower_name.rfind(".pk3:");
+  const std::string spec = at == std::string::npos
+                               ? resolve(name).string()
+                               : resolve(name.substr(0, at + 4)).string() + name.substr(at + 4);
+  try {
+    return quake::load_quake_map(spec, options).scene;
+  } catch (const Error& e) {
+    fail("{}: {}: {}", file, o.where(), e.what());
+  }
+}
+
 // Loads one entry of "models" (a file or a built-in scene), not yet transformed.
 Scene load_model(const Object& o, const std::string& file, const fs::path& dir) {
   if (o.has("file") == o.has("builtin"))
     fail("{}: {}: give exactly one of 'file' and 'builtin'", file, o.where());
+  const bool is_map = o.has("file") && quake::is_quake_spec(o.string("file"));
+  for (const char* key : {"archives", "patch_level", "spawn"})
+    if (o.has(key) && !is_map)
+      fail("{}: {}: '{}' applies only to Quake 3 maps (ARCHIVE.pk3:maps/NAME.bsp or .bsp)", file,
+           o.where(), key);
   if (o.has("builtin")) {
     const std::string name = o.string("builtin");
     if (!is_builtin_scene(name))
@@ -314,7 +365,11 @@ Scene load_model(const Object& o, const std::string& file, const fs::path& dir) 
   }
   const std::string name = o.string("file");
   if (name.empty()) fail("{}: {}: 'file' is empty", file, o.where());
-  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : dir / name;
+  const auto resolve = [&](const std::string& n) {
+    return fs::path(n).is_absolute() ? fs::path(n) : dir / n;
+  };
+  if (quake::is_quake_spec(name)) return load_map_model(o, file, resolve);
+  const fs::path path = resolve(name);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     fail("{}: {}: model file '{}' not found (looked for {})", file, o.where(), name, path.string());
@@ -429,7 +484,8 @@ Scene load_scene_file(const std::string& path) {
   const json& models = array_or_empty(top, "models", path);
   for (size_t i = 0; i < models.size(); ++i) {
     const Object o(models[i], path, fmt::format("models[{}]", i),
-                   {"file", "builtin", "translate", "rotate", "scale", "animation"});
+                   {"file", "builtin", "translate", "rotate", "scale", "animation", "archives",
+                    "patch_level", "spawn"});
     const mat4 m = model_transform(o, path);
     const bool animated = o.has("animation");
     TrsTrack track;
