@@ -174,6 +174,18 @@ TEST(Denoiser, HalfResolutionIndirectLightReachesFurther) {
   EXPECT_LT(deviation[0], 0.25f * deviation_x(light, 8, 56, 8, 56));
 }
 
+// The indirect filter's reach follows the image: photon blotches cover a fixed part of the view.
+TEST(Denoiser, IndirectPassesFollowTheImageHeight) {
+  EXPECT_EQ(indirect_iterations_for(5, 512), 5);
+  EXPECT_EQ(indirect_iterations_for(5, 540), 5);
+  EXPECT_EQ(indirect_iterations_for(5, 1024), 6);
+  EXPECT_EQ(indirect_iterations_for(5, 256), 4);
+  EXPECT_EQ(indirect_iterations_for(5, 32), 1);
+  EXPECT_EQ(indirect_iterations_for(5, 4), 1);
+  EXPECT_EQ(indirect_iterations_for(8, 4096), 8);
+  EXPECT_EQ(indirect_iterations_for(0, 512), 0);
+}
+
 // A column one pixel wide behind its neighbours has no half-resolution texel of its own (each
 // 2x2 block keeps its nearest surface): it keeps its own light rather than borrowing theirs.
 TEST(Denoiser, HalfResolutionKeepsASliverItCannotRepresent) {

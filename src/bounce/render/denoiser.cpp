@@ -226,6 +226,18 @@ void box_column(const denoise::VariancePass& p, int y) {
   }
 }
 
+}  // namespace
+
+int indirect_iterations_for(int iterations, int height) {
+  if (iterations <= 0 || height <= 0) return 0;
+  // Photon blotches are as wide as the gather radius seen from the camera, which in pixels
+  // grows with the image height (the camera's field of view is vertical).
+  const int scaled = iterations + int(std::lround(std::log2(double(height) / 512.0)));
+  return std::clamp(scaled, 1, 8);
+}
+
+namespace {
+
 // Runs `iterations` a-trous passes from `pass`'s inputs: over direct light alone, or over both
 // lights together (`both`, sharing the geometric weights). outputs(k, pass) points pass k's
 // outputs at their planes. Returns the pass whose inputs are the results.
@@ -384,7 +396,8 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   params_.add_int("atrous_iterations", &s.atrous_iterations, 0, 8,
                   "a-trous passes over direct light, with steps 1, 2, 4, ... pixels");
   params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
-                  "a-trous passes over indirect light, at its resolution");
+                  "a-trous passes over indirect light at 512 pixels of image height "
+                  "(one more per doubling)");
   params_.add_int("indirect_resolution", &s.indirect_resolution, 1, 2,
                   "indirect light is filtered at 1/N of the width and height (1 or 2)");
   params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
@@ -553,7 +566,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   base.sigma_luminance_indirect = s.sigma_luminance_indirect;
   base.sigma_normal = s.sigma_normal;
   base.sigma_depth = s.sigma_depth;
-  const int indirect_iterations = spatial && has_indirect ? s.indirect_iterations : 0;
+  const int indirect_iterations =
+      spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, h) : 0;
   const bool half = indirect_iterations > 0 && s.indirect_resolution == 2;
   // At full resolution with as many passes, both lights share each pass's geometry.
   const bool both = indirect_iterations > 0 && !half && indirect_iterations == s.atrous_iterations;

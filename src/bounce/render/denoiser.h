@@ -30,10 +30,12 @@
 namespace bounce {
 
 struct DenoiseSettings {
-  bool temporal = true;         // temporal accumulation through reprojection
-  bool spatial = true;          // the a-trous filter
-  int atrous_iterations = 3;    // a-trous passes over direct light (step 1, 2, 4, ...)
-  int indirect_iterations = 5;  // a-trous passes over indirect light, at its resolution
+  bool temporal = true;       // temporal accumulation through reprojection
+  bool spatial = true;        // the a-trous filter
+  int atrous_iterations = 3;  // a-trous passes over direct light (step 1, 2, 4, ...)
+  // a-trous passes over indirect light at its resolution, for an image 512 pixels high; one
+  // more per doubling of the height, one fewer per halving (indirect_iterations_for)
+  int indirect_iterations = 5;
   // Indirect light is filtered at 1/indirect_resolution of the width and height (1 or 2), then
   // upsampled guided by depth and normals (render/denoise_half.h).
   int indirect_resolution = 2;
@@ -72,6 +74,11 @@ enum class DenoiseView {
   kMotion,    // screen-space motion (red: x, green: y; 0.5 is still)
   kVariance,  // the luminance variance that guides the filter
 };
+
+// The a-trous passes over indirect light for an image `height` pixels high: `iterations` at 512,
+// one more per doubling, at least 1 (0 when `iterations` is 0) and at most 8. Photon blotches
+// cover a fixed part of the view, so the filter's reach follows the image.
+int indirect_iterations_for(int iterations, int height);
 
 struct DenoiseFrame {
   const GBuffer& gbuffer;  // this frame's, with motion filled
