@@ -54,8 +54,12 @@ void expect_tree_equals_brute_force(bool slice, bool direction_test) {
         for (int i = 0; i < fast.size; ++i) {
           const uint32_t p = fast.index[i];
           EXPECT_LE(fast.dist2[i], radius * radius);
-          if (slice) EXPECT_LE(std::abs(view.position[p].y - x.y), 0.01f);
-          if (direction_test) EXPECT_GT(view.normal[p].y, 0.0f);
+          if (slice) {
+            EXPECT_LE(std::abs(view.position[p].y - x.y), 0.01f);
+          }
+          if (direction_test) {
+            EXPECT_GT(view.normal[p].y, 0.0f);
+          }
         }
       }
     }

@@ -11,7 +11,7 @@
 namespace bounce {
 namespace {
 
-using vertex_test::Run;
+using vertex_test::VertexRun;
 
 Scene lit_plane(float height, float intensity) {
   Scene scene;
@@ -34,13 +34,13 @@ TEST(VertexIrradiance, UniformlyLitPlaneMatchesTheAnalyticValue) {
   const float h = 1.0f, intensity = 10.0f;
   const Scene scene = lit_plane(h, intensity);
   // First hits only, one frame of many photons, k large: the estimate's noise is ~1/sqrt(k).
-  Run run(scene, {{"store_direct_light", "true"},
-                  {"recursion_depth", "0"},
-                  {"roulette", "false"},
-                  {"photons_from_light", "400000"},
-                  {"accumulation_frames", "1"},
-                  {"max_search_count", "400"},
-                  {"mesh_refinement", "0"}});
+  VertexRun run(scene, {{"store_direct_light", "true"},
+                        {"recursion_depth", "0"},
+                        {"roulette", "false"},
+                        {"photons_from_light", "400000"},
+                        {"accumulation_frames", "1"},
+                        {"max_search_count", "400"},
+                        {"mesh_refinement", "0"}});
   run.frame(scene);
   ASSERT_GT(run.technique->tree().size(), 150000u);  // half the photons go down
   double sum_ratio = 0.0;
@@ -65,13 +65,13 @@ TEST(VertexIrradiance, UniformlyLitPlaneMatchesTheAnalyticValue) {
 TEST(VertexIrradiance, AccumulationFramesDoNotChangeTheBrightness) {
   const Scene scene = lit_plane(1.0f, 10.0f);
   const auto mean_irradiance = [&](const char* frames, int rendered) {
-    Run run(scene, {{"store_direct_light", "true"},
-                    {"recursion_depth", "0"},
-                    {"roulette", "false"},
-                    {"photons_from_light", "50000"},
-                    {"accumulation_frames", frames},
-                    {"max_search_count", "200"},
-                    {"mesh_refinement", "0"}});
+    VertexRun run(scene, {{"store_direct_light", "true"},
+                          {"recursion_depth", "0"},
+                          {"roulette", "false"},
+                          {"photons_from_light", "50000"},
+                          {"accumulation_frames", frames},
+                          {"max_search_count", "200"},
+                          {"mesh_refinement", "0"}});
     for (int k = 0; k < rendered; ++k) run.frame(scene);
     double sum = 0.0;
     for (int i = 0; i < 16; ++i)
@@ -92,11 +92,11 @@ TEST(VertexIrradiance, AccumulationFramesDoNotChangeTheBrightness) {
 TEST(VertexIrradiance, SphereSliceStopsTheLeakThroughTheWall) {
   const Scene scene = make_leak();
   const auto dark_face = [&](bool slice) {
-    Run run(scene, {{"use_sphere_slice", slice ? "true" : "false"},
-                    {"direction_test", "false"},
-                    {"photons_from_light", "2000"},
-                    {"accumulation_frames", "1"},
-                    {"mesh_refinement", "0"}});
+    VertexRun run(scene, {{"use_sphere_slice", slice ? "true" : "false"},
+                          {"direction_test", "false"},
+                          {"photons_from_light", "2000"},
+                          {"accumulation_frames", "1"},
+                          {"mesh_refinement", "0"}});
     run.frame(scene);
     double dark = 0.0, lit = 0.0;
     for (float y = 0.9f; y < 1.7f; y += 0.2f)

@@ -12,14 +12,14 @@
 
 namespace bounce::vertex_test {
 
-struct Run {
+struct VertexRun {
   std::unique_ptr<Tracer> tracer;
   std::unique_ptr<Renderer> renderer;
   VertexPhotonMapping* technique = nullptr;
   FrameSettings settings;
 
-  Run(const Scene& scene, const std::vector<std::pair<std::string, std::string>>& params,
-      int size = 16) {
+  VertexRun(const Scene& scene, const std::vector<std::pair<std::string, std::string>>& params,
+            int size = 16) {
     tracer = make_embree_tracer(scene);
     auto t = std::make_unique<VertexPhotonMapping>();
     for (const auto& [name, value] : params) t->params().set(name, value);
