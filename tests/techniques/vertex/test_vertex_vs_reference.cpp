@@ -61,8 +61,9 @@ TEST(VertexVsReference, CornellBoxCloseToThePathReference) {
   RecordProperty("mse8_single_bounce", std::to_string(single));
   RecordProperty("mse8_unrefined", std::to_string(unrefined));
   RecordProperty("mse8_starved", std::to_string(direct_only));
-  // Measured: 48.6 (400 paths, 24 frames; 44.4 with 2000 paths and 32 frames: what remains is
-  // bias, README.md "Remaining bias"); the seed's single bounce 3.5 times that, no refinement 12
+  // Measured: 48.6 (400 paths, 24 frames; 44.4 with 2000 paths and 32 frames: a k-nearest
+  // estimate's noise is about 1 / sqrt(k - 1) whatever the photon count, so frames average it
+  // away; README.md "Measured"); the seed's single bounce 3.4 times that, no refinement 11
   // times, a starved map 40 times.
   EXPECT_LT(full, 60.0);
   EXPECT_GT(single, 2.0 * full);
