@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "bounce/core/error.h"
+#include "bounce/render/params_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
 
@@ -136,6 +137,15 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
                        fmt::format("{} (technique {})", help[flag], techniques));
   command.add_option("-p,--param", o.params,
                      "Technique or denoiser parameter NAME=VALUE (repeatable; listed below)");
+  // Added after --param, so CLI11 runs this callback after filling o.params: the file's
+  // assignments go first and --param overrides them.
+  command.add_option_function<std::string>(
+      "--params",
+      [&o](const std::string& file) {
+        const std::vector<std::string> from_file = read_params_file(file);
+        o.params.insert(o.params.begin(), from_file.begin(), from_file.end());
+      },
+      "JSON file of parameters {\"NAME\": VALUE, ...}; --param overrides it");
   command.add_flag("!--no-denoise", o.denoise,
                    "Show the raw pipeline: no temporal reuse or denoising");
   command.footer(technique_parameters_help());

@@ -9,6 +9,7 @@
 #include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/registry.h"
 #include "bounce/techniques/tiled/tiled.h"
+#include "bounce/techniques/vertex/vertex.h"
 
 namespace bounce {
 
@@ -21,6 +22,7 @@ const std::vector<std::pair<std::string, Factory>>& registry() {
       {"direct", [] { return std::make_unique<DirectOnly>(); }},
       {"path", [] { return std::make_unique<PathTracing>(); }},
       {"tiled", [] { return std::make_unique<TiledPhotonMapping>(); }},
+      {"vertex", [] { return std::make_unique<VertexPhotonMapping>(); }},
   };
   return techniques;
 }

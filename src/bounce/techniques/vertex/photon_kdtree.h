@@ -1,0 +1,181 @@
+// The real-time photon map's index (seed 004 §5.3.2-5.3.3; notes/seed-004.md §2.8): a kd-tree
+// whose median photon sits in the middle of each index range (no heap layout), split on the
+// widest axis of the range's box, with unsorted leaf buckets of at most `leaf_size` photons. The
+// photons are copied into tree order, so a query walks contiguous arrays.
+//
+// The k-nearest search (knn_search) is a kernel body: an explicit stack instead of recursion and
+// a fixed-capacity max-heap instead of the seed's vector, so it never allocates. A filter runs on
+// each photon *before* it enters the heap (the seed found filtering afterwards unstable): the
+// sphere slice and the side test of vertex_estimate.h.
+#pragma once
+
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "bounce/core/device.h"
+#include "bounce/core/math.h"
+
+namespace bounce {
+
+// The most photons one estimate may hold (the seed's max_search_count is 50).
+inline constexpr int kMaxSearchCount = 512;
+
+// A photon as the map holds it.
+struct MapPhotons {
+  std::vector<vec3> position;
+  std::vector<vec3> flux;    // W
+  std::vector<vec3> normal;  // the surface's normal on the side the photon arrived from
+
+  size_t size() const { return position.size(); }
+  void clear() {
+    position.clear();
+    flux.clear();
+    normal.clear();
+  }
+};
+
+struct PhotonKdTreeView {
+  const vec3* position = nullptr;  // tree order
+  const vec3* flux = nullptr;
+  const vec3* normal = nullptr;
+  const uint8_t* axis = nullptr;  // split axis of the node whose median is at this index
+  uint32_t count = 0;
+  uint32_t leaf_size = 1;
+};
+static_assert(std::is_trivially_copyable_v<PhotonKdTreeView>);
+
+// The same predicate in build and search (the seed's two differed by one: notes §2.8).
+BOUNCE_HD inline bool kd_is_leaf(uint32_t from, uint32_t to, uint32_t leaf_size) {
+  return to - from <= leaf_size;
+}
+BOUNCE_HD inline uint32_t kd_middle(uint32_t from, uint32_t to) {
+  return from + (to - from) / 2;
+}
+
+class PhotonKdTree {
+ public:
+  // Builds over `photons` (copied into tree order); leaf_size >= 1.
+  void build(const MapPhotons& photons, uint32_t leaf_size);
+  PhotonKdTreeView view() const {
+    return {photons_.position.data(),  photons_.flux.data(),
+            photons_.normal.data(),    axis_.data(),
+            uint32_t(photons_.size()), leaf_size_};
+  }
+  const MapPhotons& photons() const { return photons_; }
+  size_t size() const { return photons_.size(); }
+
+ private:
+  MapPhotons photons_;
+  std::vector<uint8_t> axis_;
+  std::vector<uint32_t> order_;
+  uint32_t leaf_size_ = 1;
+};
+
+// The k nearest photons found so far: a max-heap on squared distance, fixed capacity.
+struct KnnHeap {
+  float dist2[kMaxSearchCount];
+  uint32_t index[kMaxSearchCount];
+  int size = 0;
+  int capacity = 0;  // k
+
+  BOUNCE_HD bool full() const { return size == capacity; }
+  BOUNCE_HD float top() const { return dist2[0]; }
+  // Adds a photon at squared distance d2 (the caller checked d2 is below the current radius).
+  BOUNCE_HD void push(float d2, uint32_t i) {
+    if (size < capacity) {
+      int c = size++;
+      while (c > 0) {
+        const int parent = (c - 1) / 2;
+        if (dist2[parent] >= d2) break;
+        dist2[c] = dist2[parent];
+        index[c] = index[parent];
+        c = parent;
+      }
+      dist2[c] = d2;
+      index[c] = i;
+      return;
+    }
+    // Full: the new photon replaces the farthest, then sinks.
+    int c = 0;
+    for (;;) {
+      const int l = 2 * c + 1, r = l + 1;
+      int largest = c;
+      float largest_d2 = d2;
+      if (l < size && dist2[l] > largest_d2) largest = l, largest_d2 = dist2[l];
+      if (r < size && dist2[r] > largest_d2) largest = r, largest_d2 = dist2[r];
+      if (largest == c) break;
+      dist2[c] = dist2[largest];
+      index[c] = index[largest];
+      c = largest;
+    }
+    dist2[c] = d2;
+    index[c] = i;
+  }
+};
+
+// The search radius, squared, while the heap holds `heap`: the farthest photon once full (the
+// seed's shrinking radius), the maximum before.
+BOUNCE_HD inline float knn_radius2(const KnnHeap& heap, float max_radius2) {
+  return heap.full() ? heap.top() : max_radius2;
+}
+
+// Offers photon i at squared distance d2 to the heap, if it is closer than the radius and the
+// filter accepts it.
+template <typename Filter>
+BOUNCE_HD inline void knn_offer(const PhotonKdTreeView& t, vec3 x, uint32_t i, float max_radius2,
+                                const Filter& accept, KnnHeap& heap) {
+  const vec3 d = t.position[i] - x;
+  const float d2 = glm::dot(d, d);
+  if (d2 >= knn_radius2(heap, max_radius2)) return;
+  if (!accept(i)) return;
+  heap.push(d2, i);
+}
+
+// The k = heap.capacity nearest photons to x within max_radius that `accept(index)` accepts, into
+// `heap` (emptied first).
+template <typename Filter>
+BOUNCE_HD inline void knn_search(const PhotonKdTreeView& t, vec3 x, float max_radius,
+                                 const Filter& accept, KnnHeap& heap) {
+  heap.size = 0;
+  if (t.count == 0 || heap.capacity <= 0) return;
+  const float max_radius2 = max_radius * max_radius;
+  struct Range {
+    uint32_t from, to;
+    float plane_d2;  // squared distance from x to the splitting plane that separates it
+  };
+  Range stack[64];
+  int top = 0;
+  stack[top++] = {0, t.count, 0.0f};
+  while (top > 0) {
+    const Range r = stack[--top];
+    if (r.plane_d2 >= knn_radius2(heap, max_radius2)) continue;
+    if (kd_is_leaf(r.from, r.to, t.leaf_size)) {
+      for (uint32_t i = r.from; i < r.to; ++i) knn_offer(t, x, i, max_radius2, accept, heap);
+      continue;
+    }
+    const uint32_t mid = kd_middle(r.from, r.to);
+    knn_offer(t, x, mid, max_radius2, accept, heap);
+    const int axis = t.axis[mid];
+    const float delta = x[axis] - t.position[mid][axis];
+    const Range left{r.from, mid, 0.0f}, right{mid + 1, r.to, 0.0f};
+    Range near = delta < 0.0f ? left : right;
+    Range far = delta < 0.0f ? right : left;
+    far.plane_d2 = delta * delta;
+    // The far side first onto the stack, so the near side is searched first.
+    if (far.to > far.from) stack[top++] = far;
+    if (near.to > near.from) stack[top++] = near;
+  }
+}
+
+// The same answer by looking at every photon: the seed's Exact_photon_map, the check of the tree.
+template <typename Filter>
+BOUNCE_HD inline void knn_brute_force(const PhotonKdTreeView& t, vec3 x, float max_radius,
+                                      const Filter& accept, KnnHeap& heap) {
+  heap.size = 0;
+  if (heap.capacity <= 0) return;
+  const float max_radius2 = max_radius * max_radius;
+  for (uint32_t i = 0; i < t.count; ++i) knn_offer(t, x, i, max_radius2, accept, heap);
+}
+
+}  // namespace bounce

@@ -1,0 +1,196 @@
+#include "bounce/techniques/vertex/vertex.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bounce/core/parallel.h"
+#include "bounce/techniques/vertex/vertex_kernels.h"
+
+namespace bounce {
+
+VertexPhotonMapping::VertexPhotonMapping() {
+  VertexSettings& s = settings_;
+  params_.add_bool("BSP_tree", &s.bsp_tree,
+                   "photon rays through the BVH (false: test every triangle)");
+  params_.add_int("mesh_refinement", &s.mesh_refinement, 0, 4000000,
+                  "triangles added to the render mesh by longest-edge splits");
+  params_.add_bool("use_estimate_cache", &s.use_estimate_cache,
+                   "one estimate per refined vertex (false: per triangle corner)");
+  params_.add_int("max_search_count", &s.max_search_count, 1, kMaxSearchCount,
+                  "k: photons in one estimate");
+  params_.add_float("max_search_radius", &s.max_search_radius, 0.0, 1e9,
+                    "search radius, scene units (0: max_search_radius_rel)");
+  params_.add_bool("use_radius_heuristic", &s.use_radius_heuristic,
+                   "radius from k, the map's size and extent (Eq 3.7)");
+  params_.add_bool("use_sphere_slice", &s.use_sphere_slice,
+                   "only photons near the tangent plane count");
+  params_.add_bool("final_gathering", &s.final_gathering,
+                   "irradiance from gather rays into the photon map");
+  params_.add_int("photons_from_light", &s.photons_from_light, 1, 10000000,
+                  "photon paths per frame");
+  params_.add_int("accumulation_frames", &s.accumulation_frames, 1, 1024,
+                  "frames of photons in the map (ring slots)");
+  params_.add_bool("store_direct_light", &s.store_direct_light,
+                   "store first hits too (the direct stage adds direct light again)");
+  params_.add_int("recursion_depth", &s.recursion_depth, 0, kMaxRecursionDepth,
+                  "levels of diffuse splitting");
+  params_.add_int("diffuse_reflections", &s.diffuse_reflections, 1, 1024, "photons a split makes");
+  params_.add_int("snowball_size", &s.snowball_size, 1, 64, "photons stored per hit");
+  params_.add_int("light_distribution_type", &s.light_distribution_type, 0, 1,
+                  "emission: 0 Saff-Kuijlaars, 1 random");
+  params_.add_int("diffuse_light_distribution", &s.diffuse_light_distribution, 0, 1,
+                  "bounces: 0 stratified, 1 random");
+  params_.add_float("max_search_radius_rel", &s.max_search_radius_rel, 1e-6, 1.0,
+                    "search radius / scene diagonal");
+  params_.add_float("radius_heuristic_alpha", &s.radius_heuristic_alpha, 1e-6, 1.0,
+                    "alpha of the radius heuristic");
+  params_.add_float("slice_thickness_rel", &s.slice_thickness_rel, 1e-7, 1.0,
+                    "sphere slice half-thickness / scene diagonal");
+  params_.add_int("final_gathering_samples", &s.final_gathering_samples, 1, 65536,
+                  "rays per final-gathered estimate");
+  params_.add_int("stop_recursion_size", &s.stop_recursion_size, 1, 256,
+                  "kd-tree leaf bucket size");
+  params_.add_float("snowball_radius_rel", &s.snowball_radius_rel, 0.0, 1.0,
+                    "snowball disc radius / scene diagonal");
+  params_.add_bool("direction_test", &s.direction_test,
+                   "photons from the other side of a surface do not count");
+  params_.add_bool("roulette", &s.roulette,
+                   "after the split levels, paths go on (Russian roulette)");
+  params_.add_bool("exact_photon_map", &s.exact_photon_map,
+                   "brute-force k nearest (the seed's Exact_photon_map)");
+  params_.add_int("seed", &s.seed, 0, 1 << 30, "photon sample seed");
+}
+
+std::vector<TechniqueOption> VertexPhotonMapping::options() const {
+  return {
+      param_option("photons-from-light", "photons_from_light", "Photon paths per frame"),
+      param_option("refine", "mesh_refinement", "Triangles added by mesh refinement"),
+      param_option("accumulation-frames", "accumulation_frames", "Frames of photons kept"),
+  };
+}
+
+std::vector<std::string> VertexPhotonMapping::still_defaults() const {
+  return {"photons_from_light=2000"};
+}
+
+void VertexPhotonMapping::prepare(const PrepareContext& c) {
+  const VertexSettings& s = settings_;
+  diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
+  {
+    ScopedStage stage(c.times, "prepare/refine");
+    if (!started_ || c.change.everything || refined_with_ != s.mesh_refinement) {
+      refined_.build(c.scene, uint32_t(s.mesh_refinement));
+      refined_with_ = s.mesh_refinement;
+    } else if (!c.change.moved_meshes.empty()) {
+      refined_.update(c.scene, c.change.moved_meshes);
+    }
+  }
+  // The ring restarts when what it holds would be inconsistent: a new scene or parameters.
+  // Moved lights and objects do not restart it: their old photons age out (seed §5.3.1).
+  if (!started_ || c.change.everything || c.change.parameters ||
+      ring_.frames() != uint32_t(s.accumulation_frames)) {
+    ring_.reset(uint32_t(s.accumulation_frames));
+    frame_ = 0;
+  }
+  started_ = true;
+  // At rest with accumulation, each frame's photons are a fresh set (the frames the pipeline
+  // averages are then independent); otherwise the frame-coherent sets.
+  rest_pass_ = c.continue_accumulation() ? rest_pass_ + 1 : 0;
+
+  {
+    ScopedStage stage(c.times, "prepare/photon trace");
+    VertexPhotonSettings ps;
+    ps.photons = uint32_t(s.photons_from_light);
+    ps.frames = uint32_t(s.accumulation_frames);
+    ps.slot = frame_;
+    ps.saff_kuijlaars = s.light_distribution_type == 0;
+    ps.stratified = s.diffuse_light_distribution == 0;
+    ps.splits = uint32_t(s.diffuse_reflections);
+    ps.recursion_depth = s.recursion_depth;
+    ps.roulette = s.roulette;
+    // Final gathering reads the light the gathered surfaces reflect: first hits included.
+    ps.store_direct = s.store_direct_light || s.final_gathering;
+    ps.snowball = s.snowball_size;
+    ps.snowball_radius = s.snowball_radius_rel * diagonal_;
+    ps.seed = uint32_t(s.seed);
+    ps.every_triangle = !s.bsp_tree;
+    ps.variant = rest_pass_;
+    MapPhotons& slot = ring_.begin_frame(frame_);
+    const VertexPhotonStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot);
+    c.counters.photon_paths += stats.paths;
+    c.counters.photons_stored += stats.stored;
+    c.counters.rays += stats.rays;
+  }
+  ++frame_;
+  {
+    ScopedStage stage(c.times, "prepare/kd-tree");
+    ring_.gather(map_);
+    tree_.build(map_, uint32_t(s.stop_recursion_size));
+  }
+
+  EstimateSettings& e = estimate_;
+  e.k = s.max_search_count;
+  e.max_radius =
+      s.max_search_radius > 0.0f ? s.max_search_radius : s.max_search_radius_rel * diagonal_;
+  if (s.use_radius_heuristic && tree_.size() > 0) {
+    // Eq 3.7 with r_n the radius of the sphere around all photons.
+    vec3 lo = map_.position[0], hi = lo;
+    for (const vec3& p : map_.position) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float rn = 0.5f * glm::length(hi - lo);
+    e.max_radius =
+        std::sqrt(float(e.k) * rn * rn / (s.radius_heuristic_alpha * float(tree_.size())));
+  }
+  e.sphere_slice = s.use_sphere_slice;
+  e.slice_half = s.slice_thickness_rel * diagonal_;
+  e.direction_test = s.direction_test;
+  e.exact = s.exact_photon_map;
+  e.flux_scale = ring_.filled() > 0 ? 1.0f / float(ring_.filled()) : 0.0f;
+  e.final_gather_rays = s.final_gathering ? s.final_gathering_samples : 0;
+  e.final_gather_seed = hash_u32(uint32_t(s.seed) ^ rest_pass_);
+}
+
+void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
+  const ConstGBufferView g = c.gbuffer.view();
+  const size_t pixels = g.size();
+  const RefinedMeshView mesh = refined_.view();
+  const bool per_key = settings_.use_estimate_cache;
+  // Estimates per key and side, or without the cache per refined triangle corner and side.
+  const size_t slots = per_key ? size_t(mesh.key_count) * 2 : size_t(mesh.leaf_count) * 6;
+  pixel_leaf_.resize(pixels);
+  pixel_weights_.resize(pixels);
+  pixel_side_.resize(pixels);
+  needed_.assign(slots, 0);
+  irradiance_.resize(slots);
+
+  const VertexPixelView pv{g,
+                           c.scene_view,
+                           mesh,
+                           pixel_leaf_.data(),
+                           pixel_weights_.data(),
+                           pixel_side_.data(),
+                           needed_.data(),
+                           per_key};
+  {
+    ScopedStage stage(c.times, "indirect/locate");
+    parallel_for(
+        pixels, [&](size_t i) { locate_pixel(pv, i); }, 1024);
+  }
+  {
+    ScopedStage stage(c.times, "indirect/estimate");
+    todo_.clear();
+    for (size_t k = 0; k < slots; ++k)
+      if (needed_[k]) todo_.push_back(uint32_t(k));
+    const VertexEstimateView ev{mesh,      tree_.view(),       c.scene_view, c.tracer.view(),
+                                estimate_, irradiance_.data(), per_key};
+    parallel_for(
+        todo_.size(), [&](size_t j) { estimate_slot(ev, todo_[j]); }, 16);
+    estimates_ = todo_.size();
+  }
+  ScopedStage stage(c.times, "indirect/interpolate");
+  const ImageView image = out.view();
+  parallel_for(
+      pixels, [&](size_t i) { image.pixels[i] = interpolate_pixel(pv, irradiance_.data(), i); },
+      1024);
+}
+
+}  // namespace bounce

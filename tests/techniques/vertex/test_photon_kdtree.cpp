@@ -1,0 +1,113 @@
+// The kd-tree's k nearest photons equal brute force's (the seed's Exact_photon_map), with and
+// without the sphere slice and the side test, over random photons and queries.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "bounce/core/rng.h"
+#include "bounce/techniques/vertex/photon_kdtree.h"
+#include "bounce/techniques/vertex/vertex_estimate.h"
+
+namespace bounce {
+namespace {
+
+MapPhotons random_photons(size_t n, uint32_t seed) {
+  Pcg32 rng(seed);
+  MapPhotons p;
+  for (size_t i = 0; i < n; ++i) {
+    // Half on the plane y = 0, half in the volume: the slice has something to remove.
+    const vec3 q(rng.next_float(), i % 2 ? rng.next_float() : 0.0f, rng.next_float());
+    p.position.push_back(q);
+    p.flux.push_back(vec3(rng.next_float()));
+    p.normal.push_back(rng.next_float() < 0.8f ? vec3(0, 1, 0) : vec3(0, -1, 0));
+  }
+  return p;
+}
+
+std::vector<std::pair<float, uint32_t>> sorted(const KnnHeap& h) {
+  std::vector<std::pair<float, uint32_t>> v;
+  for (int i = 0; i < h.size; ++i) v.emplace_back(h.dist2[i], h.index[i]);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+void expect_tree_equals_brute_force(bool slice, bool direction_test) {
+  const MapPhotons photons = random_photons(20000, 7);
+  for (const uint32_t leaf : {1u, 8u, 33u}) {
+    PhotonKdTree tree;
+    tree.build(photons, leaf);
+    const PhotonKdTreeView view = tree.view();
+    ASSERT_EQ(view.count, photons.size());
+    Pcg32 rng(99);
+    for (const int k : {1, 7, 50, 300}) {
+      for (int q = 0; q < 200; ++q) {
+        const vec3 x(rng.next_float(), q % 3 == 0 ? 0.0f : rng.next_float(), rng.next_float());
+        const vec3 n(0, 1, 0);
+        const float radius = 0.02f + 0.3f * rng.next_float();
+        const EstimateFilter filter{view, x, n, slice, direction_test, 0.01f};
+        KnnHeap fast, exact;
+        fast.capacity = exact.capacity = k;
+        knn_search(view, x, radius, filter, fast);
+        knn_brute_force(view, x, radius, filter, exact);
+        ASSERT_EQ(sorted(fast), sorted(exact)) << "k " << k << " leaf " << leaf << " query " << q;
+        for (int i = 0; i < fast.size; ++i) {
+          const uint32_t p = fast.index[i];
+          EXPECT_LE(fast.dist2[i], radius * radius);
+          if (slice) {
+            EXPECT_LE(std::abs(view.position[p].y - x.y), 0.01f);
+          }
+          if (direction_test) {
+            EXPECT_GT(view.normal[p].y, 0.0f);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(PhotonKdTree, NearestEqualBruteForce) {
+  expect_tree_equals_brute_force(false, false);
+}
+TEST(PhotonKdTree, NearestEqualBruteForceWithSphereSlice) {
+  expect_tree_equals_brute_force(true, false);
+}
+TEST(PhotonKdTree, NearestEqualBruteForceWithSliceAndSideTest) {
+  expect_tree_equals_brute_force(true, true);
+}
+
+// The heap holds the k closest even when far photons arrive first.
+TEST(PhotonKdTree, HeapKeepsTheClosest) {
+  KnnHeap h;
+  h.capacity = 3;
+  for (uint32_t i = 0; i < 10; ++i) {
+    const float d2 = float(10 - i);
+    if (!h.full() || d2 < h.top()) h.push(d2, i);
+  }
+  const auto v = sorted(h);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[0].second, 9u);
+  EXPECT_EQ(v[1].second, 8u);
+  EXPECT_EQ(v[2].second, 7u);
+}
+
+TEST(PhotonKdTree, EmptyAndTinyMaps) {
+  PhotonKdTree tree;
+  tree.build(MapPhotons{}, 8);
+  KnnHeap h;
+  h.capacity = 5;
+  const auto all = [](uint32_t) { return true; };
+  knn_search(tree.view(), vec3(0.0f), 1.0f, all, h);
+  EXPECT_EQ(h.size, 0);
+  MapPhotons one;
+  one.position = {vec3(0.1f, 0, 0)};
+  one.flux = {vec3(1.0f)};
+  one.normal = {vec3(0, 1, 0)};
+  tree.build(one, 1);
+  knn_search(tree.view(), vec3(0.0f), 1.0f, all, h);
+  ASSERT_EQ(h.size, 1);
+  EXPECT_FLOAT_EQ(h.dist2[0], 0.01f);
+}
+
+}  // namespace
+}  // namespace bounce
