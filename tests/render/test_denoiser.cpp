@@ -519,9 +519,10 @@ TEST(Denoiser, WorldChangesClipTheHistoryToTheNeighbourhood) {
   }
 }
 
-// Background and lights seen directly (no surface) pass through untouched and never count as
-// history.
-TEST(Denoiser, PixelsWithoutASurfacePassThrough) {
+// Background and lights seen directly (no surface) pass through untouched while anything moves;
+// at rest they average their frames like every pixel (a jittered edge pixel sees a surface in
+// some frames and none in others, and its average must count both).
+TEST(Denoiser, PixelsWithoutASurfacePassThroughInMotionAndAverageAtRest) {
   GBuffer g = plane(12, 12);
   for (int y = 0; y < 12; ++y) {
     for (int x = 0; x < 4; ++x) {
@@ -535,7 +536,9 @@ TEST(Denoiser, PixelsWithoutASurfacePassThrough) {
   }
   Pcg32 rng(17);
   Denoiser d;
-  for (const HistoryState state : {HistoryState::kReset, HistoryState::kRest}) {
+  Image last_indirect;
+  for (const HistoryState state :
+       {HistoryState::kReset, HistoryState::kCameraMoved, HistoryState::kRest}) {
     const Image direct = image_of(12, 12, [&](int x, int) {
       return x == 0 ? vec3(0.0f) : x < 4 ? vec3(40.0f, 30.0f, 20.0f) : vec3(rng.next_float());
     });
@@ -544,13 +547,47 @@ TEST(Denoiser, PixelsWithoutASurfacePassThrough) {
     for (int y = 0; y < 12; ++y) {
       for (int x = 0; x < 4; ++x) {
         EXPECT_EQ(out.direct.at(x, y), direct.at(x, y)) << x << "," << y;
-        EXPECT_EQ(out.indirect.at(x, y), indirect.at(x, y)) << x << "," << y;
-        EXPECT_EQ(d.history_length()[g.view().index(x, y)], 0.0f);
+        if (state == HistoryState::kRest) {
+          // The second frame of an average that started with the frame before.
+          expect_near_rel(out.indirect.at(x, y),
+                          0.5f * (indirect.at(x, y) + last_indirect.at(x, y)), 1e-5f,
+                          std::to_string(x) + "," + std::to_string(y));
+          EXPECT_EQ(d.history_length()[g.view().index(x, y)], 1.0f);
+        } else {
+          EXPECT_EQ(out.indirect.at(x, y), indirect.at(x, y)) << x << "," << y;
+          EXPECT_EQ(d.history_length()[g.view().index(x, y)], 0.0f);
+        }
       }
       // Lit pixels are filtered, and the bright light beside them does not leak in.
       for (int x = 4; x < 12; ++x) EXPECT_LT(out.direct.at(x, y).x, 1.0f) << x << "," << y;
     }
+    last_indirect = indirect;
   }
+}
+
+// A jittered edge pixel at rest sees a surface in some frames and the background in others:
+// its average counts every frame, as the raw pipeline's does.
+TEST(Denoiser, EdgePixelsAtRestAverageFramesWithAndWithoutASurface) {
+  const GBuffer lit = plane(4, 4);
+  GBuffer empty = plane(4, 4);
+  for (size_t i = 0; i < 16; ++i) {
+    empty.primitive[i] = empty.mesh[i] = kNoPrimitive;
+    empty.depth[i] = std::numeric_limits<float>::infinity();
+    empty.albedo[i] = vec3(0.0f);
+  }
+  Denoiser d;
+  d.settings().spatial = false;
+  Output out;
+  float expected = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    const bool surface = k % 2 == 0;
+    const float v = surface ? 2.0f : 0.0f;
+    out = run(d, surface ? lit : empty, k == 0 ? HistoryState::kReset : HistoryState::kRest,
+              Image(4, 4, vec3(v)));
+    expected += (v - expected) / float(k + 1);
+  }
+  EXPECT_NEAR(out.direct.at(1, 1).x, expected, 1e-5f);
+  EXPECT_NEAR(expected, 1.0f, 1e-6f);
 }
 
 // Spatial off leaves a single frame as it came; temporal off forgets every earlier frame.

@@ -191,15 +191,17 @@ struct RemodulatePass {
 };
 
 // Multiplies the filtered light back by its albedo and adds the emission (at rest, kRest: the
-// averages); pixels without a surface keep what the techniques wrote. Branch-free, so the CPU's
-// loop vectorises.
+// averages); in motion, pixels without a surface keep what the techniques wrote. Branch-free,
+// so the CPU's loop vectorises.
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
-  const bool hit = p.g.hit(i);
+  // At rest every pixel holds an average, those without a surface this frame too.
+  const bool averaged = p.g.hit(i) | kRest;
   const vec3 f = kRest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
   const vec3 e = kRest ? p.rest.emission.get(i) : p.g.emission[i];
-  p.out_direct[i] = pick(hit, p.direct.get(i) * f + e, p.out_direct[i]);
-  if constexpr (kIndirect) p.out_indirect[i] = pick(hit, p.indirect.get(i) * f, p.out_indirect[i]);
+  p.out_direct[i] = pick(averaged, p.direct.get(i) * f + e, p.out_direct[i]);
+  if constexpr (kIndirect)
+    p.out_indirect[i] = pick(averaged, p.indirect.get(i) * f, p.out_indirect[i]);
 }
 
 }  // namespace bounce::denoise

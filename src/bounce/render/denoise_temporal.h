@@ -69,12 +69,11 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
   Reprojected r;
   if (!p.s.reproject) {
     // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
-    // frames may see another object at an edge, and that is the antialiasing).
-    r.kept = p.prev_surface.hit(i);
-    if (r.kept) {
-      r.h = p.prev[i];
-      r.length = p.prev_length[i];
-    }
+    // frames may see another object at an edge, or none, and that is the antialiasing: every
+    // frame counts, with or without a surface).
+    r.kept = true;
+    r.h = p.prev[i];
+    r.length = p.prev_length[i];
     return r;
   }
   // Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
@@ -162,7 +161,8 @@ BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec4& color
 // clipped to this frame's neighbourhood when the world changed.
 BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  if (!p.s.history || !p.g.hit(i)) return Reprojected{};
+  // Reprojection follows surfaces; at rest a pixel without one keeps averaging.
+  if (!p.s.history || (!p.g.hit(i) && p.s.reproject)) return Reprojected{};
   Reprojected r = reproject(p, x, y, i);
   if (r.kept && p.s.clip) {
     const ColorBoxes boxes = neighbourhood(p, x, y);
@@ -229,31 +229,46 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_
   const vec3 in_d = p.direct[i];
   const vec3 in_i = kIndirect ? p.indirect[i] : vec3(0.0f);
   const vec3 raw_d = (in_d - emission) * inv, raw_i = in_i * inv;
-  const bool kept = hit & r.kept;
+  // At rest (kRest) every pixel averages its frames, those without a surface too.
+  const bool averaged = hit | kRest;
+  const bool kept = averaged & r.kept;
   const float n = pick(kept, glm::min(r.length + 1.0f, p.s.cap_direct), 0.0f);
   const float alpha = 1.0f / (n + 1.0f);
   const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
   // This frame as a texel, blended in: colour, squared luminance.
   const float l_d = luminance_of(raw_d), l_i = luminance_of(raw_i);
   const vec4 h_d = pick(kept, r.h.direct, vec4(0.0f)), h_i = pick(kept, r.h.indirect, vec4(0.0f));
-  const vec4 next_d = h_d + (vec4(raw_d, l_d * l_d) - h_d) * alpha;
-  const vec4 next_i = h_i + (vec4(raw_i, l_i * l_i) - h_i) * alpha_i;
-  p.next[i].direct = pick(hit, next_d, vec4(0.0f));
-  p.next[i].indirect = pick(hit, next_i, vec4(0.0f));
-  p.light_direct.set(i, pick(hit, vec3(next_d), in_d));
-  if constexpr (kIndirect) p.light_indirect.set(i, pick(hit, vec3(next_i), in_i));
+  vec4 next_d = h_d + (vec4(raw_d, l_d * l_d) - h_d) * alpha;
+  vec4 next_i = h_i + (vec4(raw_i, l_i * l_i) - h_i) * alpha_i;
+  if constexpr (kRest) {
+    // The rest average continues where this pixel's history does, else it starts here.
+    const bool continues = kept & p.s.rest_continues;
+    const vec3 f0 = pick(continues, p.rest.factor.get(i), factor);
+    const vec3 e0 = p.rest.emission.get(i);
+    const vec3 f1 = f0 + (factor - f0) * alpha;
+    p.rest.factor.set(i, f1);
+    p.rest.emission.set(i, pick(continues, e0 + (emission - e0) * alpha, emission));
+    // At rest jittered frames see other surfaces at an edge: the light that goes back out is
+    // the average of the modulated light (the history times the average factor, plus this
+    // frame), divided by the new average factor, so that remodulating by it returns exactly the
+    // average of the frames (an average of quotients times an average of factors would not).
+    const vec3 inv_f1 = 1.0f / f1;
+    const vec3 d = (vec3(h_d) * f0 * (1.0f - alpha) + (in_d - emission) * alpha) * inv_f1;
+    const vec3 ind = (vec3(h_i) * f0 * (1.0f - alpha_i) + in_i * alpha_i) * inv_f1;
+    next_d = vec4(d, next_d.w);
+    next_i = vec4(ind, next_i.w);
+  }
+  // (Without a surface and history, next is this frame's light: what a later frame at rest
+  // averages with.)
+  p.next[i].direct = next_d;
+  p.next[i].indirect = next_i;
+  p.light_direct.set(i, pick(averaged, vec3(next_d), in_d));
+  if constexpr (kIndirect) p.light_indirect.set(i, pick(averaged, vec3(next_i), in_i));
   // The variance of the mean of the frames (the spatial estimate replaces it where n is small).
   const float m1_d = luminance_of(vec3(next_d)), m1_i = luminance_of(vec3(next_i));
   p.var_direct[i] = pick(hit, glm::max(next_d.w - m1_d * m1_d, 0.0f) * alpha, 0.0f);
   p.var_indirect[i] = pick(hit, glm::max(next_i.w - m1_i * m1_i, 0.0f) * alpha_i, 0.0f);
   p.length[i] = n;
-  if constexpr (kRest) {
-    // The rest average continues where this pixel's history does, else it starts here.
-    const bool continues = kept & p.s.rest_continues;
-    const vec3 f0 = p.rest.factor.get(i), e0 = p.rest.emission.get(i);
-    p.rest.factor.set(i, pick(continues, f0 + (factor - f0) * alpha, factor));
-    p.rest.emission.set(i, pick(continues, e0 + (emission - e0) * alpha, emission));
-  }
   return hit & (n + 1.0f < kShortHistory);
 }
 
