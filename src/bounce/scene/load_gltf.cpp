@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
 #include "bounce/scene/gltf_internal.h"
 #include "bounce/scene/load.h"
 
@@ -61,6 +62,8 @@ void forward_warnings(const std::string& warnings, const std::string& path) {
 }
 
 tg::Model read_model(const std::string& path) {
+  check_regular_file(path, "glTF file");
+  preflight(path);
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) fail("{}: cannot open the file", path);
