@@ -180,7 +180,8 @@ void add_bench_command(CLI::App& app) {
                 "Average frames at rest into a converged image, as the viewer does at rest "
                 "(default: every frame is a real-time frame, as in motion)");
   cmd->add_option("--json", options->json,
-                  "Also write the results, build and machine as JSON to this file");
+                  "Also write the results, build and machine as JSON to this file")
+      ->check(non_empty_path());
   const std::string size = fmt::format("{0}x{0} unless -W/-H are given", kTemporalSize);
   cmd->add_option(
          "--flicker", options->flicker,

@@ -180,7 +180,8 @@ void add_sequence_command(CLI::App& app) {
                   "(at time from + k/fps), ending in .png (tone-mapped), .exr or .pfm (linear); "
                   "default out/sequence/SCENE_%04d.png")
       ->check(non_empty_path());
-  cmd->add_option("--json", o->json, "Also write per-frame times and file names as JSON here");
+  cmd->add_option("--json", o->json, "Also write per-frame times and file names as JSON here")
+      ->check(non_empty_path());
   cmd->callback([o, cmd] {
     o->from_given = cmd->count("--from") > 0;
     o->to_given = cmd->count("--to") > 0;

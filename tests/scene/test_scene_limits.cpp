@@ -36,6 +36,12 @@ Scene scene_with_light(vec3 light) {
 TEST(SceneLimits, PositionsUpToTheExtentAreAcceptedAndBeyondAreNot) {
   Scene ok = scene_with_light(vec3(kMaxSceneExtent, 0.0f, -kMaxSceneExtent));
   EXPECT_NO_THROW(ok.finalize());
+  // A camera given by the file is held to the extent too.
+  Scene seen = scene_with_light(vec3(0.0f, 1.0f, 0.0f));
+  seen.camera.position = vec3(0.0f, 0.0f, -3e6f);
+  seen.has_camera = true;
+  EXPECT_TRUE(contains(error_of([&] { seen.finalize(); }),
+                       "camera position (0, 0, -3000000) is outside the scene extent"));
   for (const float x : {2e18f, 1.01e6f, std::numeric_limits<float>::infinity(),
                         std::numeric_limits<float>::quiet_NaN()}) {
     Scene s = scene_with_light(vec3(0.0f, x, 0.0f));
@@ -55,8 +61,10 @@ TEST(SceneLimits, EmissionAndRadiusAreBounded) {
   Scene bright = scene_with_light(vec3(0.0f, 1.0f, 0.0f));
   bright.lights[0].intensity = vec3(1e30f);
   EXPECT_TRUE(contains(error_of([&] { bright.finalize(); }),
-                       "intensity (1e+30, 1e+30, 1e+30) is "
-                       "outside [0, 1e+20]"));
+                       "intensity (1e+30, 1e+30, 1e+30) is above the limit of 1e+20"));
+  Scene dark = scene_with_light(vec3(0.0f, 1.0f, 0.0f));
+  dark.lights[0].intensity = vec3(1.0f, -1.0f, 1.0f);
+  EXPECT_TRUE(contains(error_of([&] { dark.finalize(); }), "point) has a negative intensity"));
   Scene glowing = scene_with_light(vec3(0.0f, 1.0f, 0.0f));
   glowing.materials[0].emission = vec3(0.0f, 1e25f, 0.0f);
   EXPECT_TRUE(contains(error_of([&] { glowing.finalize(); }), "emission"));
@@ -87,7 +95,7 @@ TEST(SceneLimits, KeysAreCheckedAtLoadAndPosesWhenPosed) {
   ASSERT_NO_THROW(far.finalize());
   EXPECT_NO_THROW(animate(far, 0.0f));
   const std::string e = error_of([&] { animate(far, 1.0f); });
-  EXPECT_TRUE(contains(e, "light 0 ('bulb', point) position (1.8e+06, 0, 0) is outside")) << e;
+  EXPECT_TRUE(contains(e, "light 0 ('bulb', point) position (1800000, 0, 0) is outside")) << e;
 }
 
 TEST(SceneLimits, EditsAreChecked) {

@@ -42,10 +42,13 @@ void validate_mesh(const Scene& s, const Mesh& m) {
   }
 }
 
+// Finite and at most kMaxEmission; negative values are refused by the callers, each with its
+// own message.
 void check_emission(const Scene& s, vec3 c, const std::string& what) {
   check_finite(s, c, what);
-  if (!valid_emission(c))
-    fail("{}: {} ({}, {}, {}) is outside [0, {:g}]", s.source, what, c.x, c.y, c.z, kMaxEmission);
+  if (glm::any(glm::greaterThan(c, vec3(kMaxEmission))))
+    fail("{}: {} ({}, {}, {}) is above the limit of {:g}", s.source, what, c.x, c.y, c.z,
+         kMaxEmission);
 }
 
 void validate_material(const Scene& s, const Material& m) {
@@ -67,6 +70,11 @@ void validate_light(const Scene& s, const Light& l, size_t index) {
   check_emission(s, l.intensity, where + " intensity");
   check_emission(s, l.irradiance, where + " irradiance");
   check_emission(s, l.radiance, where + " radiance");
+  if (!valid_emission(l.emission()))
+    fail("{}: {} has a negative {}", s.source, where,
+         l.type == LightType::kDirectional ? "irradiance"
+         : l.type == LightType::kSphere    ? "radiance"
+                                           : "intensity");
   if (l.type == LightType::kSpot || l.type == LightType::kDirectional) {
     if (!is_finite(l.direction) || glm::length(l.direction) < 1e-6f)
       fail("{}: {} has no valid direction", s.source, where);
@@ -113,11 +121,15 @@ void Scene::finalize() {
   prepare_animation(*this);
 
   if (!has_camera) {
+    // Framed from the bounds, which are within the extent: it may stand a few times the
+    // extent away, still far inside what the tracer carries.
     camera = frame_bounds(bounds);
     has_camera = true;
+    check_finite(*this, camera.position, "camera position");
+  } else {
+    check_extent(*this, camera.position, "camera position");
+    check_extent(*this, camera.look_at, "camera target");
   }
-  check_extent(*this, camera.position, "camera position");
-  check_extent(*this, camera.look_at, "camera target");
   if (glm::length(camera.look_at - camera.position) < 1e-9f)
     fail("{}: the camera looks at its own position", source);
   if (!(camera.vfov_deg > 0.0f && camera.vfov_deg < 180.0f))
