@@ -9,6 +9,7 @@
 #include "bounce/core/parallel.h"
 #include "bounce/eval/temporal_runs.h"
 #include "bounce/scene/load.h"
+#include "input_checks.h"
 #include "options.h"
 #include "report.h"
 
@@ -93,6 +94,7 @@ void run_bench(BenchOptions o) {
   Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   if (o.animate && scene.animation.empty())
     fail("{}: --animate: the scene has no animation", scene.source);
+  check_memory(scene, o.frame.width, o.frame.height);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
   configure_pipeline(o.frame, renderer);
@@ -178,7 +180,8 @@ void add_bench_command(CLI::App& app) {
                 "Average frames at rest into a converged image, as the viewer does at rest "
                 "(default: every frame is a real-time frame, as in motion)");
   cmd->add_option("--json", options->json,
-                  "Also write the results, build and machine as JSON to this file");
+                  "Also write the results, build and machine as JSON to this file")
+      ->check(non_empty_path());
   const std::string size = fmt::format("{0}x{0} unless -W/-H are given", kTemporalSize);
   cmd->add_option(
          "--flicker", options->flicker,

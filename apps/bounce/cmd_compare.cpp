@@ -7,6 +7,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/image_io.h"
 #include "bounce/metrics/image_metrics.h"
+#include "input_checks.h"
 #include "options.h"
 
 namespace bounce::app {
@@ -94,7 +95,8 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("reference", o->reference, "Reference image A (.exr, .pfm, .png, ...)")
       ->required();
   cmd->add_option("test", o->test, "Image B compared against A")->required();
-  cmd->add_option("--heatmap", o->heatmap, "Write a per-pixel error heat map (PNG)");
+  cmd->add_option("--heatmap", o->heatmap, "Write a per-pixel error heat map (PNG)")
+      ->check(non_empty_path());
   cmd->add_option("--heatmap-max", o->heatmap_max,
                   "RMS sRGB error at the top of the heat map's ramp (0: the 99th percentile)")
       ->check(CLI::Range(0.0, 255.0))

@@ -9,9 +9,11 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/image_io.h"
+#include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/reference.h"
+#include "input_checks.h"
 #include "options.h"
 #include "report.h"
 
@@ -39,8 +41,10 @@ std::string default_output(const std::string& scene) {
 }
 
 void run_reference(const ReferenceOptions& o) {
+  install_interrupt_handlers();  // this command polls for them (throw_if_interrupted)
   const ThreadLimit limit(o.threads);
   const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
+  check_output_image(out);  // now, not after minutes of rendering
   const Scene scene = load_scene_at(o.scene, o.at);
   auto tracer = make_embree_tracer(scene);
   ReferenceSettings settings;
@@ -52,18 +56,13 @@ void run_reference(const ReferenceOptions& o) {
   settings.path.max_bounces = o.max_bounces;
   settings.path.rr_start = o.rr_start;
 
-  // Fail on a bad output name now, not after minutes of rendering.
-  std::string ext = std::filesystem::path(out).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".exr" && ext != ".pfm" && ext != ".png")
-    fail("cannot write {}: the output must end in .exr, .pfm or .png", out);
-  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+  check_memory(scene, o.width, o.height, kReferenceBytesPerPixel);
 
   // Progress: in place on a terminal, every 10% in a log.
   ProgressLine line;
   int last_tenth = -1;
   const auto progress = [&](const ReferenceProgress& p) {
+    throw_if_interrupted();  // between passes: the partial image is dropped
     const int percent = int(std::floor(100.0 * p.fraction));
     const bool due = percent / 10 > last_tenth;
     if (due) last_tenth = percent / 10;
@@ -73,6 +72,7 @@ void run_reference(const ReferenceOptions& o) {
   };
   const ReferenceResult r = render_reference(scene, *tracer, scene.camera, settings, progress);
   line.finish();
+  throw_if_interrupted();
   save_image(out, r.image, o.exposure_ev);
   const std::string bounces =
       o.max_bounces < 0 ? std::string("unlimited") : fmt::format("{}", o.max_bounces);
@@ -123,10 +123,12 @@ void add_reference_command(CLI::App& app) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_option("--exposure", o->exposure_ev, "Exposure in stops for PNG output")
+      ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))
       ->capture_default_str();
   cmd->add_option("-o,--out", o->out,
                   "Output: .exr or .pfm (linear), .png (tone-mapped); default "
-                  "out/SCENE-reference.exr");
+                  "out/SCENE-reference.exr")
+      ->check(non_empty_path());
   cmd->callback([o] { run_reference(*o); });
 }
 

@@ -5,9 +5,11 @@
 #include <filesystem>
 
 #include "bounce/core/image_io.h"
+#include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
+#include "input_checks.h"
 #include "options.h"
 #include "report.h"
 
@@ -26,11 +28,14 @@ std::string default_output(const std::string& scene) {
 }
 
 void run_render(const RenderOptions& o) {
+  install_interrupt_handlers();  // this command polls for them (throw_if_interrupted)
   const ThreadLimit limit(o.frame.threads);
   const std::string out = o.out.empty() ? default_output(o.frame.scene) : o.out;
+  check_output_image(out);  // now, not after the render
   Stopwatch load_watch;
   const Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   const double load_ms = load_watch.elapsed_ms();
+  check_memory(scene, o.frame.width, o.frame.height);
   auto tracer = make_embree_tracer(scene);
   FrameOptions frame_options = o.frame;
   frame_options.still = true;  // a still affords more work per pass than a real-time frame
@@ -46,6 +51,7 @@ void run_render(const RenderOptions& o) {
   uint64_t primary = 0, shadow = 0;
   const Frame* frame = nullptr;
   for (int k = 0; k < o.spp; ++k) {
+    throw_if_interrupted();
     frame = &renderer.render(scene.camera, settings);
     stats.add(frame->times);
     primary += frame->primary_rays;
@@ -76,8 +82,7 @@ void run_render(const RenderOptions& o) {
   print_stage_table(stats, false);
   fmt::print("rays: {} primary, {} shadow\n", primary, shadow);
 
-  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+  throw_if_interrupted();
   save_image(out, image, settings.exposure_ev);
   fmt::print("wrote {}\n", out);
 }
@@ -93,7 +98,8 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option("-o,--out", options->out,
-                  "Output file: .png (tone-mapped), .exr or .pfm (linear); default out/SCENE.png");
+                  "Output file: .png (tone-mapped), .exr or .pfm (linear); default out/SCENE.png")
+      ->check(non_empty_path());
   cmd->callback([options] { run_render(*options); });
 }
 

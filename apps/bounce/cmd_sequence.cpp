@@ -11,10 +11,12 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/image_io.h"
+#include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/load.h"
 #include "frame_pattern.h"
 #include "frame_range.h"
+#include "input_checks.h"
 #include "options.h"
 #include "report.h"
 
@@ -49,6 +51,7 @@ void create_directory(const FramePattern& pattern) {
 }
 
 void run_sequence(const SequenceOptions& o) {
+  install_interrupt_handlers();  // this command polls for them (throw_if_interrupted)
   const ThreadLimit limit(o.frame.threads);
   // Everything that can be refused is checked before the first frame renders.
   const FramePattern pattern(o.out.empty() ? default_pattern(o.frame.scene) : o.out);
@@ -69,6 +72,7 @@ void run_sequence(const SequenceOptions& o) {
       fail("--from {:g} s is past the end of the animation ({:g} s); give --to", from, to);
   }
   const FrameRange range = make_frame_range(from, to, o.fps, o.every);
+  check_memory(scene, o.frame.width, o.frame.height);
   create_directory(pattern);
 
   auto tracer = make_embree_tracer(scene);
@@ -85,6 +89,7 @@ void run_sequence(const SequenceOptions& o) {
     ProgressLine progress;
     double printed_s = 0.0;
     for (int64_t k = 0; k < range.count; ++k) {
+      throw_if_interrupted();  // frames written so far stay; none is written half-way
       const double t = range.time(k);
       if (!scene.animation.empty()) renderer.animate(scene, float(t));
       const Camera camera = scene.animation.camera_at(scene.camera, float(t));
@@ -173,8 +178,10 @@ void add_sequence_command(CLI::App& app) {
   cmd->add_option("-o,--out", o->out,
                   "Frame files: a pattern with one integer conversion for the frame number k "
                   "(at time from + k/fps), ending in .png (tone-mapped), .exr or .pfm (linear); "
-                  "default out/sequence/SCENE_%04d.png");
-  cmd->add_option("--json", o->json, "Also write per-frame times and file names as JSON here");
+                  "default out/sequence/SCENE_%04d.png")
+      ->check(non_empty_path());
+  cmd->add_option("--json", o->json, "Also write per-frame times and file names as JSON here")
+      ->check(non_empty_path());
   cmd->callback([o, cmd] {
     o->from_given = cmd->count("--from") > 0;
     o->to_given = cmd->count("--to") > 0;

@@ -1,5 +1,6 @@
 // bounce view: the interactive viewer (apps/bounce/view/), and its headless, scripted form.
 #include "bounce/core/error.h"
+#include "input_checks.h"
 #include "options.h"
 #include "view/script.h"
 #include "view/view_window.h"
@@ -20,7 +21,8 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--frames", options->frames, "Stop after N frames (0: run until closed)")
       ->check(CLI::Range(0, 1 << 30));
   cmd->add_option("--screenshot", options->screenshot,
-                  "Save the window as PNG after the last frame");
+                  "Save the window as PNG after the last frame")
+      ->check(non_empty_path());
   cmd->add_option("--script", options->script, "Play scripted actions (below), then stop")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--hide-ui", options->hide_ui, "Start with the panel hidden (Tab shows it)");

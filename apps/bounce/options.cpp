@@ -11,6 +11,7 @@
 #include "bounce/render/params_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
+#include "input_checks.h"
 
 namespace bounce::app {
 
@@ -115,6 +116,7 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();
   command.add_option("--exposure", o.exposure_ev, "Exposure in stops for PNG output")
+      ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))
       ->capture_default_str();
   command.add_option("--seed", o.seed, "Seed of the sample patterns")->capture_default_str();
   command.add_option("--at", o.at, "Animated scenes: the animation time to pose the scene at, s")

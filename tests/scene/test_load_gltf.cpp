@@ -290,6 +290,42 @@ TEST(LoadGltf, SkipsNonTrianglePrimitivesWithAWarning) {
   EXPECT_TRUE(contains(warnings, "mode 1")) << warnings;
 }
 
+// Strips and fans are triangles too (glTF 2.0 section 3.7.2.1): converted with one winding.
+TEST(LoadGltf, StripsAndFansBecomeTriangles) {
+  TempDir dir;
+  struct Case {
+    int mode;
+    std::vector<float> xyz;
+    size_t triangles;
+    float area;
+    float normal_z;  // the sign every face normal shares
+  };
+  const Case cases[] = {
+      {TINYGLTF_MODE_TRIANGLE_STRIP, {0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 2, 0, 0}, 3, 1.5f, -1.0f},
+      {TINYGLTF_MODE_TRIANGLE_FAN, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, 2, 1.0f, 1.0f},
+  };
+  for (const Case& c : cases) {
+    tg::Model m = triangle_model();
+    tg::Primitive& p = m.meshes[0].primitives[0];
+    p.mode = c.mode;
+    p.indices = -1;
+    p.attributes["POSITION"] = add_positions(m, c.xyz);
+    testing::internal::CaptureStderr();
+    const Scene scene = load_scene(write(m, dir, "mode" + std::to_string(c.mode) + ".gltf"));
+    const std::string warnings = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warnings, "") << c.mode;
+    ASSERT_EQ(scene.triangle_count(), c.triangles) << c.mode;
+    const Mesh& mesh = scene.meshes[0];
+    float area = 0.0f;
+    for (uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+      const vec3 n = mesh.face_normal_area2(t);
+      EXPECT_FLOAT_EQ(n.z, c.normal_z * glm::length(n)) << c.mode << " triangle " << t;
+      area += 0.5f * glm::length(n);
+    }
+    EXPECT_FLOAT_EQ(area, c.area) << c.mode;
+  }
+}
+
 TEST(LoadGltf, TextureIsDecodedFromSrgb) {
   TempDir dir;
   Image image(2, 2, vec3(0.2f, 0.5f, 1.0f));

@@ -32,6 +32,8 @@
 
 #include "bounce/core/color.h"
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
+#include "bounce/core/interrupt.h"
 
 namespace bounce {
 
@@ -82,6 +84,7 @@ Bytes read_file(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail("cannot read {}: file not found", path);
   if (fs::is_directory(path, ec)) fail("cannot read {}: it is a directory", path);
+  check_regular_file(path, "image");
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) fail("cannot read {}: {}", path, errno_message(errno));
   Bytes bytes;
@@ -133,6 +136,11 @@ void write_file_atomically(const std::string& path, const Bytes& bytes) {
   if (!problem.empty()) {
     fs::remove(temporary, ec);
     fail("cannot write {}: {}", path, problem);
+  }
+  // A signal during the write: leave the target as it was and no temporary file behind.
+  if (interrupt_signal() != 0) {
+    fs::remove(temporary, ec);
+    throw_if_interrupted();
   }
   fs::rename(temporary, target, ec);
   if (ec) {

@@ -9,6 +9,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/scene.h"
+#include "bounce/scene/scene_limits.h"
 
 namespace bounce {
 
@@ -19,6 +20,16 @@ vec3 interpolate(const vec3& a, const vec3& b, float f) {
 }
 quat interpolate(const quat& a, const quat& b, float f) {
   return glm::slerp(a, glm::dot(a, b) < 0.0f ? -b : b, f);
+}
+
+// Key values: translations, scales and camera positions within the scene extent (a scale beyond
+// it would carry geometry beyond it), rotations finite and not zero.
+bool valid_key(vec3 v) {
+  return within_extent(v);
+}
+bool valid_key(const quat& q) {
+  const float n = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  return std::isfinite(n) && n > 1e-12f;
 }
 
 template <typename T>
@@ -32,6 +43,11 @@ void check_keys(const Scene& s, const Keyframes<T>& k, const std::string& what) 
     if (i > 0 && !(k.times[i] > k.times[i - 1]))
       fail("{}: animation '{}': key times must increase (key {} at {} s after {} s)", s.source,
            what, i, k.times[i], k.times[i - 1]);
+    if (!valid_key(k.values[i]))
+      fail(
+          "{}: animation '{}': key {} (at {} s) has a value that is not finite or is outside the "
+          "scene extent (|value| <= {:g})",
+          s.source, what, i, k.times[i], kMaxSceneExtent);
   }
 }
 

@@ -23,6 +23,10 @@ namespace tg = tinygltf;
 // The extensions whose meaning we implement; a file that requires any other is refused.
 extern const std::set<std::string> kSupportedExtensions;
 
+// gltf_preflight.cpp: reads the file's JSON before tinygltf and refuses a glTF 1.0 file or a
+// required extension we lack by name (throws Error); warns about values of the wrong type.
+void preflight(const std::string& path);
+
 // Everything the conversion shares: the model, the scene being built and what was converted.
 struct Context {
   Context(const std::string& p, const tg::Model& m, Scene& s) : path(p), model(m), scene(s) {}

@@ -1,11 +1,12 @@
-// The glTF node tree: meshes (TRIANGLES primitives), KHR_lights_punctual lights and the first
-// perspective camera, placed by the nodes' TRS or matrix transforms.
+// The glTF node tree: meshes (triangle, strip and fan primitives), KHR_lights_punctual lights and
+// the first perspective camera, placed by the nodes' TRS or matrix transforms.
 //
 // Lights: KHR_lights_punctual gives point and spot intensity in candela and directional
 // illuminance in lux. bounce renders in radiometric units, and we do NOT convert photometric
 // units (that would need a luminous efficacy and a spectrum): colour x intensity is taken as W/sr
 // for point and spot lights and as W/m^2 for directional lights.
 #include <cmath>
+#include <vector>
 
 #include "bounce/core/error.h"
 #include "bounce/scene/gltf_internal.h"
@@ -19,12 +20,31 @@ int attribute(const tg::Primitive& p, const char* name) {
   return it == p.attributes.end() ? -1 : it->second;
 }
 
+// Triangles from a strip or fan's vertex list, wound as glTF 2.0 (section 3.7.2.1) defines:
+// strip triangle i is (v[i], v[i+1+i%2], v[i+2-i%2]), fan triangle i is (v[i+1], v[i+2], v[0]).
+std::vector<uint32_t> triangle_list(int mode, const std::vector<uint32_t>& v) {
+  std::vector<uint32_t> out;
+  if (v.size() < 3) return out;
+  out.reserve(3 * (v.size() - 2));
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+      out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+  }
+  return out;
+}
+
 void add_primitive(Context& ctx, const tg::Primitive& p, const mat4& world, std::string name,
                    const std::string& where) {
-  if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES) {
+  const bool strip_or_fan =
+      p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+  if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES && !strip_or_fan) {
     if (ctx.skipped_modes.insert(p.mode).second)
-      warn(fmt::format("{}: skipping primitives of mode {} (only triangles are supported)",
-                       ctx.path, p.mode));
+      warn(
+          fmt::format("{}: skipping primitives of mode {} (points and lines: only triangles, "
+                      "strips and fans are rendered)",
+                      ctx.path, p.mode));
     return;
   }
   const int position = attribute(p, "POSITION");
@@ -57,6 +77,7 @@ void add_primitive(Context& ctx, const tg::Primitive& p, const mat4& world, std:
     indices.resize(nv);
     for (size_t i = 0; i < nv; ++i) indices[i] = uint32_t(i);
   }
+  if (strip_or_fan) indices = triangle_list(p.mode, indices);
   if (indices.size() % 3 != 0)
     fail("{}: {}: {} vertex indices do not make whole triangles", ctx.path, where, indices.size());
   if (indices.empty()) return;

@@ -10,10 +10,14 @@
 //
 // This file reads the file and runs the conversion steps, each in its own file (gltf_internal.h).
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
+#include <vector>
 
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
 #include "bounce/scene/gltf_internal.h"
 #include "bounce/scene/load.h"
 
@@ -60,13 +64,32 @@ void forward_warnings(const std::string& warnings, const std::string& path) {
     if (!trim(line).empty()) warn(path + ": " + trim(line));
 }
 
+// tinygltf's file access for external buffers and images, without opening anything but regular
+// files: its own FileExists opens the file, which blocks forever on a fifo.
+bool file_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void* user_data) {
+  if (exists_but_not_regular(path)) {
+    if (err) *err += "'" + path + "' is not a regular file (a device, fifo or directory)\n";
+    return false;
+  }
+  return tg::ReadWholeFile(out, err, path, user_data);
+}
+
 tg::Model read_model(const std::string& path) {
+  check_regular_file(path, "glTF file");
+  preflight(path);
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) fail("{}: cannot open the file", path);
   }
   tg::TinyGLTF loader;
   loader.SetImageLoader(&decode_image, nullptr);
+  loader.SetFsCallbacks(
+      {&file_exists, &tg::ExpandFilePath, &read_whole_file, &tg::WriteWholeFile, nullptr});
   tg::Model model;
   std::string error, warnings;
   const bool ok = is_glb(path) ? loader.LoadBinaryFromFile(&model, &error, &warnings, path)

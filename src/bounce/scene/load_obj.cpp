@@ -23,6 +23,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/image_io.h"
+#include "bounce/core/input_file.h"
 #include "bounce/scene/load.h"
 
 namespace bounce {
@@ -102,9 +103,18 @@ void check_face_vertex(std::string_view token, const std::string& name, size_t l
                   (count < 2 || (count == 3 && parts[1].empty()) || is_integer(parts[1])) &&
                   (count < 3 || is_integer(parts[2]));
   if (!ok) fail("{}:{}: '{}' is not a face vertex (v, v/t, v//n or v/t/n)", name, line, token);
-  for (size_t i = 0; i < count; ++i)
+  for (size_t i = 0; i < count; ++i) {
     if (is_zero(parts[i]))
       fail("{}:{}: face vertex '{}' uses index 0 (OBJ indices start at 1)", name, line, token);
+    // tinyobjloader reads indices into an int without an overflow check: 4294967295 would wrap
+    // to -1 (the last vertex). No file holds 2^31 vertices, so a larger index is an error.
+    std::string_view digits = parts[i];
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    int value = 0;
+    if (!digits.empty() &&
+        std::from_chars(digits.data(), digits.data() + digits.size(), value).ec != std::errc())
+      fail("{}:{}: face vertex '{}': index {} is out of range", name, line, token, parts[i]);
+  }
 }
 
 void check_numbers(const std::vector<std::string_view>& tokens, size_t min_count, size_t max_count,
@@ -216,6 +226,12 @@ class MtlReader : public tinyobj::MaterialReader {
     if (text == nullptr) {
       const fs::path path = fs::path(dir_) / mtl_name;
       label = path.string();
+      if (exists_but_not_regular(label)) {
+        if (error_.empty())
+          error_ =
+              fmt::format("{}: mtllib '{}': {} is not a regular file", obj_name_, mtl_name, label);
+        return false;
+      }
       if (!read_file(label, &file_text)) {
         *warnings += "material file '" + label + "' not found\n";
         return false;
@@ -479,8 +495,23 @@ void forward_warnings(const std::string& warnings, const std::string& name) {
   }
 }
 
+// OBJ is ASCII (or UTF-8) text. UTF-16 and binary files would otherwise pass as a file of
+// unknown statements and end as "no triangles", which says nothing about the real problem.
+void check_text(const std::string& text, const std::string& name) {
+  const auto starts = [&](std::string_view prefix) { return text.starts_with(prefix); };
+  if (starts("\xFF\xFE") || starts("\xFE\xFF"))
+    fail(
+        "{}: the file is UTF-16 text; an OBJ must be ASCII or UTF-8 (convert it, e.g. with "
+        "iconv -f UTF-16 -t UTF-8)",
+        name);
+  const size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    fail("{}: not a text OBJ: byte {} is a NUL character (UTF-16 or binary data)", name, nul);
+}
+
 Scene load_obj_impl(const std::string& obj_text, MtlReader& mtl, bool inline_mtl,
                     const std::string& name) {
+  check_text(obj_text, name);
   const ObjScan scan = scan_obj(obj_text, name);
   // OBJ text given with its MTL text but no mtllib line: ask for the MTL so it is still read.
   std::istringstream stream(inline_mtl && !scan.has_mtllib ? "mtllib inline.mtl\n" + obj_text
@@ -533,6 +564,7 @@ Scene load_obj_impl(const std::string& obj_text, MtlReader& mtl, bool inline_mtl
 }  // namespace
 
 Scene load_obj(const std::string& path) {
+  check_regular_file(path, "OBJ file");
   std::string text;
   if (!read_file(path, &text)) fail("{}: cannot read the file ({})", path, std::strerror(errno));
   const std::string dir = fs::path(path).parent_path().string();

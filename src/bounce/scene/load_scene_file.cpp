@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/quake/load_quake.h"
 
@@ -470,6 +471,7 @@ const json& array_or_empty(const Object& top, const char* key, const std::string
 }  // namespace
 
 Scene load_scene_file(const std::string& path) {
+  check_regular_file(path, "scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: cannot open the file", path);
   std::ostringstream text;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bounce/core/error.h"
+#include "bounce/scene/scene_limits.h"
 
 namespace bounce {
 
@@ -41,11 +42,20 @@ void validate_mesh(const Scene& s, const Mesh& m) {
   }
 }
 
+// Finite and at most kMaxEmission; negative values are refused by the callers, each with its
+// own message.
+void check_emission(const Scene& s, vec3 c, const std::string& what) {
+  check_finite(s, c, what);
+  if (glm::any(glm::greaterThan(c, vec3(kMaxEmission))))
+    fail("{}: {} ({}, {}, {}) is above the limit of {:g}", s.source, what, c.x, c.y, c.z,
+         kMaxEmission);
+}
+
 void validate_material(const Scene& s, const Material& m) {
   const std::string where = "material '" + m.name + "'";
   check_finite(s, m.albedo, where + " albedo");
   check_finite(s, m.f0, where + " F0");
-  check_finite(s, m.emission, where + " emission");
+  check_emission(s, m.emission, where + " emission");
   if (!(m.roughness >= 0.0f && m.roughness <= 1.0f))
     fail("{}: {} roughness {} is outside [0, 1]", s.source, where, m.roughness);
   if (glm::any(glm::lessThan(m.emission, vec3(0.0f))))
@@ -57,17 +67,29 @@ void validate_material(const Scene& s, const Material& m) {
 void validate_light(const Scene& s, const Light& l, size_t index) {
   const std::string where = fmt::format("light {} ('{}', {})", index, l.name, l.type_name());
   check_finite(s, l.position, where + " position");
-  check_finite(s, l.intensity, where + " intensity");
-  check_finite(s, l.irradiance, where + " irradiance");
-  check_finite(s, l.radiance, where + " radiance");
+  check_emission(s, l.intensity, where + " intensity");
+  check_emission(s, l.irradiance, where + " irradiance");
+  check_emission(s, l.radiance, where + " radiance");
+  if (!valid_emission(l.emission()))
+    fail("{}: {} has a negative {}", s.source, where,
+         l.type == LightType::kDirectional ? "irradiance"
+         : l.type == LightType::kSphere    ? "radiance"
+                                           : "intensity");
   if (l.type == LightType::kSpot || l.type == LightType::kDirectional) {
     if (!is_finite(l.direction) || glm::length(l.direction) < 1e-6f)
       fail("{}: {} has no valid direction", s.source, where);
   }
-  if (l.type == LightType::kSphere && !(l.radius > 0.0f && std::isfinite(l.radius)))
-    fail("{}: {} needs a positive radius (got {})", s.source, where, l.radius);
+  if (l.type == LightType::kSphere && !(l.radius > 0.0f && l.radius <= kMaxSceneExtent))
+    fail("{}: {} needs a positive radius of at most {:g} m (got {})", s.source, where,
+         kMaxSceneExtent, l.radius);
   if (l.type == LightType::kSpot && !(l.cos_outer < l.cos_inner))
     fail("{}: {} needs an outer cone wider than its inner cone", s.source, where);
+}
+
+void check_extent(const Scene& s, vec3 p, const std::string& what) {
+  if (!within_extent(p))
+    fail("{}: {} ({}, {}, {}) is outside the scene extent (|coordinate| <= {:g} m)", s.source, what,
+         p.x, p.y, p.z, kMaxSceneExtent);
 }
 
 // Frames the scene's bounds from the -z side, like the Cornell box camera.
@@ -99,11 +121,15 @@ void Scene::finalize() {
   prepare_animation(*this);
 
   if (!has_camera) {
+    // Framed from the bounds, which are within the extent: it may stand a few times the
+    // extent away, still far inside what the tracer carries.
     camera = frame_bounds(bounds);
     has_camera = true;
+    check_finite(*this, camera.position, "camera position");
+  } else {
+    check_extent(*this, camera.position, "camera position");
+    check_extent(*this, camera.look_at, "camera target");
   }
-  check_finite(*this, camera.position, "camera position");
-  check_finite(*this, camera.look_at, "camera target");
   if (glm::length(camera.look_at - camera.position) < 1e-9f)
     fail("{}: the camera looks at its own position", source);
   if (!(camera.vfov_deg > 0.0f && camera.vfov_deg < 180.0f))
@@ -117,10 +143,22 @@ void Scene::derive() {
   for (const auto& m : meshes) {
     triangle_offsets.push_back(offset);
     offset += uint32_t(m.triangle_count());
-    for (const auto& p : m.positions) bounds.extend(p);
+    // Checked here, where every load, edit and pose passes, so nothing beyond the extent (or
+    // not finite) reaches a technique or the tracer.
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+      if (!within_extent(m.positions[i]))
+        check_extent(*this, m.positions[i], fmt::format("mesh '{}' vertex {}", m.name, i));
+      bounds.extend(m.positions[i]);
+    }
   }
-  for (const auto& l : lights)
-    if (l.type != LightType::kDirectional) bounds.extend(l.position);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const Light& l = lights[i];
+    if (l.type == LightType::kDirectional) continue;
+    if (!within_extent(l.position))
+      check_extent(*this, l.position,
+                   fmt::format("light {} ('{}', {}) position", i, l.name, l.type_name()));
+    bounds.extend(l.position);
+  }
 
   // Group emissive triangles by (mesh, material) into area lights weighted by area.
   area_lights.clear();
