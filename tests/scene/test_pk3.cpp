@@ -24,10 +24,19 @@ TEST(Pk3, ReadsEntriesByNameInAnyCase) {
 TEST(Pk3, MissingArchiveAndEntry) {
   TempDir dir;
   std::string e = error_of([&] { Pk3Archive(dir.file("none.pk3")); });
-  EXPECT_TRUE(contains(e, "none.pk3") && contains(e, "cannot open")) << e;
+  EXPECT_TRUE(contains(e, "none.pk3") && contains(e, "not found")) << e;
   const Pk3Archive a(dir.write("a.pk3", stored_zip({{"x.txt", "x"}})));
   e = error_of([&] { a.read("maps/gone.bsp"); });
   EXPECT_TRUE(contains(e, "a.pk3") && contains(e, "no entry 'maps/gone.bsp'")) << e;
+}
+
+// A device or a directory named as an archive is refused before libzip reads from it.
+TEST(Pk3, OnlyRegularFilesAreArchives) {
+  TempDir dir;
+  for (const std::string& path : {std::string("/dev/zero"), dir.file("")}) {
+    const std::string e = error_of([&] { Pk3Archive a(path); });
+    EXPECT_TRUE(contains(e, "not a regular file")) << e;
+  }
 }
 
 TEST(Pk3, NotAZipIsAnError) {

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
 #include "bounce/scene/quake/bsp.h"
 #include "bounce/scene/quake/entities.h"
 #include "bounce/scene/quake/map_lights.h"
@@ -37,8 +38,8 @@ std::pair<std::string, std::string> split_spec(const std::string& spec) {
 }
 
 std::vector<uint8_t> read_file_bytes(const std::string& path) {
+  check_regular_file(path, "map");
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) fail("{}: no such file", path);
   const auto size = fs::file_size(path, ec);
   if (ec) fail("{}: cannot read its size: {}", path, ec.message());
   if (size > kMaxBspBytes)

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "bounce/core/error.h"
+#include "bounce/core/input_file.h"
 
 namespace bounce::quake {
 
@@ -36,6 +37,7 @@ struct Pk3Archive::Impl {
 };
 
 Pk3Archive::Pk3Archive(const std::string& path) : path_(path), impl_(std::make_unique<Impl>()) {
+  check_regular_file(path, "pk3 archive");
   int code = 0;
   // ZIP_CHECKCONS: reject archives whose central directory and local headers disagree.
   impl_->zip = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &code);
