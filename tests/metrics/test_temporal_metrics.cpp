@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "bounce/core/error.h"
-#include "bounce/metrics/temporal_metrics.h"
 #include "bounce/eval/temporal_runs.h"
+#include "bounce/metrics/temporal_metrics.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
 

@@ -1,13 +1,13 @@
 #include <gtest/gtest.h>
 
 #include "bounce/core/error.h"
+#include "bounce/core/parallel.h"
+#include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
 #include "render/render_test_util.h"
 #include "scene/hand_built_scenes.h"
-#include "bounce/core/parallel.h"
-#include "bounce/eval/render_image.h"
 
 namespace bounce {
 namespace {

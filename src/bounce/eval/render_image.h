@@ -1,6 +1,6 @@
 // One still image from a technique named on the command line or in a test: builds the tracer, the
-// technique and a Renderer, and accumulates frames. It sits above techniques/ because it creates one
-// by name.
+// technique and a Renderer, and accumulates frames. It sits above techniques/ because it creates
+// one by name.
 #pragma once
 
 #include <string>
