@@ -43,6 +43,64 @@ struct PhotonEmitters {
   PhotonEmitterView view() const { return {picker.view(), scene_radius, scene_centre}; }
 };
 
+// A photon leaving area light `area` at the point u picks, along `local` (a direction about the
+// light's normal), carrying `flux`.
+BOUNCE_HD inline EmittedPhoton photon_from_area_light(const SceneView& scene,
+                                                      const AreaLightView& area, vec2 u, vec3 local,
+                                                      vec3 flux) {
+  const AreaLightPoint q = sample_area_light_point(scene, area, u);
+  EmittedPhoton p;
+  p.flux = flux;
+  p.direction = Basis::from_normal(q.normal).to_world(local);
+  p.origin = offset_origin(q.position, q.normal);
+  return p;
+}
+
+// A photon leaving scene light `light` carrying `flux`. `local` is its direction in the light's
+// own frame: the world's for a point light, about the axis for a spot, about the surface normal
+// for a sphere light (a directional light's photons go its way). `u` places the photon: the point
+// on a sphere light, or on the disc across the scene, behind it, that a directional light's
+// photons start from. A spot's flux is weighted by its falloff over the falloff's mean over the
+// outer cone (power / (intensity * cone solid angle)), so the expected flux stays right.
+BOUNCE_HD inline EmittedPhoton photon_from_light(const LightRecord& light,
+                                                 const PhotonEmitterView& emitters, vec2 u,
+                                                 vec3 local, vec3 flux) {
+  EmittedPhoton p;
+  p.flux = flux;
+  switch (light.type) {
+    case LightType::kPoint:
+      p.origin = light.position;
+      p.direction = local;
+      break;
+    case LightType::kSpot: {
+      p.origin = light.position;
+      p.direction = Basis::from_normal(light.direction).to_world(local);
+      const vec3 power = light.power(emitters.scene_radius);
+      const float cone = kTwoPi * (1.0f - light.cos_outer);
+      const float mean_falloff =
+          glm::max(power.x + power.y + power.z, 1e-30f) /
+          glm::max((light.intensity.x + light.intensity.y + light.intensity.z) * cone, 1e-30f);
+      p.flux *= spot_falloff(light, p.direction) / mean_falloff;
+      break;
+    }
+    case LightType::kDirectional: {
+      const Basis basis = Basis::from_normal(light.direction);
+      const vec2 d = sample_concentric_disk(u) * emitters.scene_radius;
+      p.origin = emitters.scene_centre + basis.t * d.x + basis.b * d.y -
+                 light.direction * (2.0f * emitters.scene_radius);
+      p.direction = light.direction;
+      break;
+    }
+    case LightType::kSphere: {
+      const vec3 n = sample_uniform_sphere(u);
+      p.origin = offset_origin(light.position + n * light.radius, n);
+      p.direction = Basis::from_normal(n).to_world(local);
+      break;
+    }
+  }
+  return p;
+}
+
 // Emits path i of n: u (stratified over the paths) picks the light and the point on it, v (random)
 // the direction. Flux is normalised so that the paths' expected total equals the lights' power.
 BOUNCE_HD inline EmittedPhoton emit_photon(const SceneView& scene,
@@ -53,55 +111,19 @@ BOUNCE_HD inline EmittedPhoton emit_photon(const SceneView& scene,
   const uint32_t k = picker.pick(u.x);
   const float probability = picker.pmf[k];
   u.x = picker.remap(k, u.x);
-  EmittedPhoton p;
   if (k >= picker.light_count) {
     const AreaLightView& area = scene.area_lights[k - picker.light_count];
-    p.flux = area.power() / (probability * float(path_count));
-    const AreaLightPoint q = sample_area_light_point(scene, area, u);
-    p.direction = Basis::from_normal(q.normal).to_world(sample_cosine_hemisphere(v));
-    p.origin = offset_origin(q.position, q.normal);
-    return p;
+    return photon_from_area_light(scene, area, u, sample_cosine_hemisphere(v),
+                                  area.power() / (probability * float(path_count)));
   }
   const LightRecord& light = scene.lights[k];
-  const vec3 power = light.power(emitters.scene_radius);
-  p.flux = power / (probability * float(path_count));
-
-  switch (light.type) {
-    case LightType::kPoint:
-      p.origin = light.position;
-      p.direction = sample_uniform_sphere(u);
-      break;
-    case LightType::kSpot: {
-      // Uniform in the outer cone; the falloff weights the flux (its mean over the cone is
-      // power / (intensity * cone solid angle), so the expected flux stays right).
-      p.origin = light.position;
-      p.direction =
-          Basis::from_normal(light.direction).to_world(sample_uniform_cone(u, light.cos_outer));
-      const float cone = kTwoPi * (1.0f - light.cos_outer);
-      const float mean_falloff =
-          glm::max(power.x + power.y + power.z, 1e-30f) /
-          glm::max((light.intensity.x + light.intensity.y + light.intensity.z) * cone, 1e-30f);
-      p.flux *= spot_falloff(light, p.direction) / mean_falloff;
-      break;
-    }
-    case LightType::kDirectional: {
-      // A disk across the scene, perpendicular to the light, behind the scene.
-      const Basis basis = Basis::from_normal(light.direction);
-      const vec2 d = sample_concentric_disk(u) * emitters.scene_radius;
-      p.origin = emitters.scene_centre + basis.t * d.x + basis.b * d.y -
-                 light.direction * (2.0f * emitters.scene_radius);
-      p.direction = light.direction;
-      break;
-    }
-    case LightType::kSphere: {
-      const vec3 n = sample_uniform_sphere(u);
-      p.origin = light.position + n * light.radius;
-      p.origin = offset_origin(p.origin, n);
-      p.direction = Basis::from_normal(n).to_world(sample_cosine_hemisphere(v));
-      break;
-    }
-  }
-  return p;
+  const vec3 flux = light.power(emitters.scene_radius) / (probability * float(path_count));
+  // The direction in the light's own frame: the whole sphere for a point light, the outer cone
+  // for a spot, a cosine-weighted hemisphere about a sphere light's surface normal.
+  const vec3 local = light.type == LightType::kSpot    ? sample_uniform_cone(u, light.cos_outer)
+                     : light.type == LightType::kPoint ? sample_uniform_sphere(u)
+                                                       : sample_cosine_hemisphere(v);
+  return photon_from_light(light, emitters, u, local, flux);
 }
 
 }  // namespace bounce

@@ -45,52 +45,14 @@ BOUNCE_HD inline EmittedPhoton emit_vertex_photon(const SceneView& scene,
                                                   const PhotonEmitterView& emitters,
                                                   const VertexPathStart& start) {
   const uint32_t light_count = emitters.picker.light_count;
-  EmittedPhoton p;
-  p.flux = start.flux;
   const float ca = glm::cos(start.azimuth), sa = glm::sin(start.azimuth);
   const vec3 turned(ca * start.local_direction.x - sa * start.local_direction.y,
                     sa * start.local_direction.x + ca * start.local_direction.y,
                     start.local_direction.z);
-  if (start.emitter >= light_count) {
-    const AreaLightView& area = scene.area_lights[start.emitter - light_count];
-    const AreaLightPoint q = sample_area_light_point(scene, area, start.u);
-    p.direction = Basis::from_normal(q.normal).to_world(turned);
-    p.origin = offset_origin(q.position, q.normal);
-    return p;
-  }
-  const LightRecord& light = scene.lights[start.emitter];
-  switch (light.type) {
-    case LightType::kPoint:
-      p.origin = light.position;
-      p.direction = turned;
-      break;
-    case LightType::kSpot: {
-      p.origin = light.position;
-      p.direction = Basis::from_normal(light.direction).to_world(turned);
-      const vec3 power = light.power(emitters.scene_radius);
-      const float cone = kTwoPi * (1.0f - light.cos_outer);
-      const float mean_falloff =
-          glm::max(power.x + power.y + power.z, 1e-30f) /
-          glm::max((light.intensity.x + light.intensity.y + light.intensity.z) * cone, 1e-30f);
-      p.flux *= spot_falloff(light, p.direction) / mean_falloff;
-      break;
-    }
-    case LightType::kDirectional: {
-      const Basis basis = Basis::from_normal(light.direction);
-      const vec2 d = sample_concentric_disk(start.u) * emitters.scene_radius;
-      p.origin = emitters.scene_centre + basis.t * d.x + basis.b * d.y -
-                 light.direction * (2.0f * emitters.scene_radius);
-      p.direction = light.direction;
-      break;
-    }
-    case LightType::kSphere: {
-      const vec3 n = sample_uniform_sphere(start.u);
-      p.origin = offset_origin(light.position + n * light.radius, n);
-      p.direction = Basis::from_normal(n).to_world(turned);
-      break;
-    }
-  }
-  return p;
+  if (start.emitter >= light_count)
+    return photon_from_area_light(scene, scene.area_lights[start.emitter - light_count], start.u,
+                                  turned, start.flux);
+  return photon_from_light(scene.lights[start.emitter], emitters, start.u, turned, start.flux);
 }
 
 // The closest triangle by testing every one (Moller-Trumbore), and the sphere lights: what the
