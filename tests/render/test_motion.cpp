@@ -119,15 +119,21 @@ TEST(Motion, MovedMeshCarriesItsOwnMotion) {
   for (vec2 m : g.motion) ASSERT_EQ(m, vec2(0.0f));
 }
 
+// Small accumulating frames of direct light, for the tests through the Renderer.
+FrameSettings small_frames() {
+  FrameSettings settings;
+  settings.width = settings.height = 32;
+  settings.light_samples = 1;
+  settings.accumulate = true;
+  return settings;
+}
+
 // Through the Renderer: a camera move gives motion, a following frame at rest none.
 TEST(Motion, RendererFillsMotionFrameAfterFrame) {
   const Scene scene = make_cornell();
   const auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_technique("direct"));
-  FrameSettings settings;
-  settings.width = settings.height = 32;
-  settings.light_samples = 1;
-  settings.accumulate = true;
+  const FrameSettings settings = small_frames();
   renderer.render(scene.camera, settings);
   const Camera moved = moved_camera(scene.camera);
   float largest = 0.0f;
@@ -143,10 +149,7 @@ TEST(Motion, ResizedFramesKeepTheirHistory) {
   const Scene scene = make_cornell();
   const auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_technique("direct"));
-  FrameSettings settings;
-  settings.width = settings.height = 32;
-  settings.light_samples = 1;
-  settings.accumulate = true;
+  FrameSettings settings = small_frames();
   settings.denoise = true;
   for (int k = 0; k < 3; ++k) renderer.render(scene.camera, settings);
   settings.width = settings.height = 16;

@@ -261,8 +261,6 @@ denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iteratio
 struct Denoiser::Buffers {
   int width = 0;
   int height = 0;
-  int last_width = 0;  // the size of the last run's surfaces and history
-  int last_height = 0;
   bool valid = false;         // a previous run left a history of this size
   bool had_indirect = false;  // and it had indirect light
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
@@ -292,8 +290,6 @@ struct Denoiser::Buffers {
   // history and the Denoiser's history length) stay at their old size: this run reprojects them
   // across the size change. Otherwise nothing is valid any more.
   void resize(int w, int h, bool keep_last) {
-    last_width = keep_last ? width : w;
-    last_height = keep_last ? height : h;
     width = w;
     height = h;
     const size_t n = size_t(w) * size_t(h);
@@ -436,16 +432,19 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const size_t n = size_t(w) * size_t(h);
   const bool has_indirect = indirect != nullptr;
   HistoryState state = frame.state;
+  // The size of the last run's surfaces and history, which this run reprojects from.
+  int prev_width = w, prev_height = h;
   if (b.width != w || b.height != h) {
     // A history to reproject from survives a size change (the viewer's resolution scaler).
     const bool keep_last = b.valid && state != HistoryState::kReset && settings_.temporal;
+    if (keep_last) {
+      prev_width = b.width;
+      prev_height = b.height;
+    }
     b.resize(w, h, keep_last);
     if (!keep_last) history_length_.assign(n, 0.0f);
-  } else {
-    b.last_width = w;
-    b.last_height = h;
   }
-  const bool resized = b.last_width != w || b.last_height != h;
+  const bool resized = prev_width != w || prev_height != h;
   if (!b.valid || b.had_indirect != has_indirect) state = HistoryState::kReset;
   b.valid = true;
   b.had_indirect = has_indirect;
@@ -488,8 +487,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.motion = b.motion.data();
     temporal.width = w;
     temporal.height = h;
-    temporal.prev_width = b.last_width;
-    temporal.prev_height = b.last_height;
+    temporal.prev_width = prev_width;
+    temporal.prev_height = prev_height;
     denoise::TemporalSettings& ts = temporal.s;
     ts.history = s.temporal && state != HistoryState::kReset;
     ts.reproject =

@@ -43,7 +43,7 @@ struct ShadowBatch {
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
   const ConstGBufferView view = g.view();
-  const bool resampled = lights.count > settings.max_looped_lights;
+  const bool resampled = resamples_lights(lights, settings);
   vec3* pixels = out.pixels().data();
   tbb::enumerable_thread_specific<ShadowBatch> batches;
   parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {

@@ -30,6 +30,13 @@ struct DirectSettings {
   int candidates = 8;  // resampling: candidates drawn by power per light sample
 };
 
+// Whether a scene with `lights` (LightPicker's entries) takes direct_pixel_resampled rather than
+// the loop over every light (direct_pixel).
+BOUNCE_HD inline bool resamples_lights(const LightPickerView& lights,
+                                       const DirectSettings& settings) {
+  return lights.count > settings.max_looped_lights;
+}
+
 // A per-pixel, per-light rotation of the sample pattern (Cranley-Patterson), as two floats.
 BOUNCE_HD inline vec2 pattern_offset(uint32_t pixel, uint32_t light, uint32_t frame,
                                      uint32_t seed) {
