@@ -9,7 +9,7 @@
 namespace bounce {
 
 // Linear -> sRGB-encoded value (IEC 61966-2-1 OETF); negative inputs stay on the linear segment.
-inline float srgb_encode(float linear) {
+BOUNCE_HD inline float srgb_encode(float linear) {
   if (linear <= 0.0031308f) return 12.92f * linear;
   return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
@@ -27,7 +27,7 @@ BOUNCE_HD inline float luminance(vec3 rgb) {
 
 // Scales, clamps to [0, 1] and encodes one linear channel as an 8-bit sRGB value. NaN maps to 0
 // so that a bad pixel shows as black instead of reaching an undefined float-to-int conversion.
-inline uint8_t srgb8_from_linear(float linear, float scale) {
+BOUNCE_HD inline uint8_t srgb8_from_linear(float linear, float scale) {
   float v = linear * scale;
   if (!(v > 0.0f)) v = 0.0f;
   if (v > 1.0f) v = 1.0f;

@@ -18,6 +18,11 @@ void Renderer::set_technique(std::unique_ptr<Technique> technique) {
   pending_.merge(SceneChange::all());
 }
 
+void Renderer::set_device(std::unique_ptr<DevicePipeline> device) {
+  device_ = std::move(device);
+  pending_.merge(SceneChange::all());
+}
+
 void Renderer::scene_changed(const SceneChange& change) {
   pending_.merge(change);
 }
@@ -123,31 +128,39 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;
-  f.technique = TechniqueCounters{};
-  {
-    ScopedStage stage(f.times, "prepare");
-    technique_->prepare(PrepareContext{scene_, scene_data_.view(), tracer_, change,
-                                       settings.accumulate, frame_index_, f.times, f.technique});
-  }
   const int w = settings.width, h = settings.height;
   const CameraRays rays = CameraRays::from(camera, w, h);
   // Jittered frames walk a Halton (2, 3) pattern over the pixel, so their average is the
   // pixel's box-filtered value; unjittered frames sample pixel centres.
   const vec2 subpixel =
       settings.jitter ? vec2(halton(0, frame_index_ + 1), halton(1, frame_index_ + 1)) : vec2(0.5f);
+  // Motion from the last frame's camera (none on the first frame), in this frame's pixels: after
+  // a resize the last camera's rays are measured in the new size.
+  CameraRays previous = frame_index_ == 0 || change.everything ? rays : last_rays_;
+  previous.width = rays.width;
+  previous.height = rays.height;
+  last_rays_ = rays;
+  f.frames_averaged = rest_frames_;
+  if (device_) {
+    device_->render(
+        DeviceFrameInput{scene_, scene_data_, lights_, *technique_, settings, change, rays,
+                         previous, subpixel, rest, history, denoiser_, frame_index_},
+        f);
+    ++frame_index_;
+    return f;
+  }
+  f.technique = TechniqueCounters{};
+  {
+    ScopedStage stage(f.times, "prepare");
+    technique_->prepare(PrepareContext{scene_, scene_data_.view(), tracer_, change,
+                                       settings.accumulate, frame_index_, f.times, f.technique});
+  }
   {
     ScopedStage stage(f.times, "gbuffer");
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
     f.primary_rays = build_gbuffer(scene_data_.view(), tracer_, rays, subpixel, f.gbuffer);
-    // Motion from the last frame's camera (none on the first frame), in this frame's pixels: after
-    // a resize the last camera's rays are measured in the new size.
-    const bool first = frame_index_ == 0 || change.everything;
-    CameraRays previous = first ? rays : last_rays_;
-    previous.width = rays.width;
-    previous.height = rays.height;
     compute_motion(scene_data_.view(), rays, previous, f.gbuffer);
   }
-  last_rays_ = rays;
   {
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
@@ -156,7 +169,6 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
                                    rays.origin, direct, f.direct);
     if (average) direct_average_.add(f.direct, settings.accumulate, rest);
   }
-  f.frames_averaged = rest_frames_;
   const bool indirect = technique_->has_indirect();
   if (indirect) {
     ScopedStage stage(f.times, "indirect");

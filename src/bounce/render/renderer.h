@@ -13,6 +13,7 @@
 #include "bounce/core/image.h"
 #include "bounce/core/timer.h"
 #include "bounce/render/denoiser.h"
+#include "bounce/render/device_pipeline.h"
 #include "bounce/render/gbuffer.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/technique.h"
@@ -61,6 +62,10 @@ struct Frame {
 class Renderer {
  public:
   Renderer(const Scene& scene, Tracer& tracer, std::unique_ptr<Technique> technique);
+  // Runs the frame's stages on another device from now on (null: back to the CPU). The scene
+  // update and the decisions about history stay here, so both backends see the same frames.
+  void set_device(std::unique_ptr<DevicePipeline> device);
+  const DevicePipeline* device() const { return device_.get(); }
   Technique& technique() { return *technique_; }
   // Swaps the technique (a viewer's technique switch); it starts from the current scene.
   void set_technique(std::unique_ptr<Technique> technique);
@@ -116,6 +121,7 @@ class Renderer {
   std::vector<std::string> last_parameters_;
   RunningAverage direct_average_, indirect_average_;
   Denoiser denoiser_;
+  std::unique_ptr<DevicePipeline> device_;
 };
 
 }  // namespace bounce

@@ -36,6 +36,42 @@ class SceneData {
   // Valid until the next build, refresh or destruction.
   SceneView view() const;
 
+  // The flattened arrays a view points into, for a backend that copies them to a device and
+  // points a device view at the copies (relocating each pointer by its offset in its array).
+  struct Arrays {
+    std::span<const MeshView> meshes;
+    std::span<const vec3> positions, previous_positions, normals;
+    std::span<const vec2> uvs;
+    std::span<const uvec3> triangles;
+    std::span<const uint32_t> triangle_materials, triangle_offsets;
+    std::span<const MaterialRecord> materials;
+    std::span<const vec3> texels;
+    std::span<const TextureView> textures;
+    std::span<const LightRecord> lights;
+    std::span<const TriangleRef> area_triangles;
+    std::span<const vec3> area_normals;
+    std::span<const float> area_cdf;
+    std::span<const AreaLightView> area_lights;
+  };
+  Arrays arrays() const {
+    return {meshes_,
+            positions_,
+            previous_positions_,
+            normals_,
+            uvs_,
+            triangles_,
+            triangle_materials_,
+            triangle_offsets_,
+            materials_,
+            texels_,
+            textures_,
+            lights_,
+            area_triangles_,
+            area_normals_,
+            area_cdf_,
+            area_lights_};
+  }
+
  private:
   bool same_layout(const Scene& scene) const;
   void copy_small_arrays(const Scene& scene);  // materials, lights, area lights, bounds
