@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "bounce/core/error.h"
+#include "bounce/gpu/cuda_pipeline.h"
 #include "bounce/render/params_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
@@ -75,6 +76,7 @@ DenoiseSettings FrameOptions::denoise_settings() const {
 
 void configure_pipeline(const FrameOptions& options, Renderer& renderer) {
   renderer.denoiser().settings() = options.denoise_settings();
+  if (options.device == "cuda") renderer.set_device(make_cuda_pipeline());
 }
 
 FrameOptions realtime_frame_options() {
@@ -150,6 +152,12 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
       "JSON file of parameters {\"NAME\": VALUE, ...}; --param overrides it");
   command.add_flag("!--no-denoise", o.denoise,
                    "Show the raw pipeline: no temporal reuse or denoising");
+  command
+      .add_option("--device", o.device,
+                  "Where the frame's stages run: cpu, or cuda (an NVIDIA GPU; techniques direct "
+                  "and tiled)")
+      ->check(CLI::IsMember({"cpu", "cuda"}))
+      ->capture_default_str();
   command.footer(technique_parameters_help());
 }
 

@@ -26,7 +26,8 @@ struct FrameOptions {
   std::map<std::string, std::string> technique_options;
   // A still image: the technique's still_defaults() apply before the user's options.
   bool still = false;
-  bool denoise = true;  // temporal reuse and denoising (--no-denoise: the raw pipeline)
+  bool denoise = true;         // temporal reuse and denoising (--no-denoise: the raw pipeline)
+  std::string device = "cpu";  // where the frame's stages run: cpu or cuda
 
   FrameSettings settings() const;
   // The denoiser's parameters: its defaults and the --param assignments that name them.
@@ -51,7 +52,8 @@ std::string scene_stem(const std::string& scene);
 
 // Lists every technique's options and parameters with their defaults and ranges (for --help).
 std::string technique_parameters_help();
-// Applies the pipeline's own parameters (the denoiser's) to a renderer.
+// Applies the pipeline's own parameters (the denoiser's) and the --device to a renderer (fails
+// clearly when --device cuda cannot run here).
 void configure_pipeline(const FrameOptions& options, Renderer& renderer);
 // Creates the technique and applies its still defaults (for a still), its options and the --param
 // assignments, in that order (throws Error on a bad one, or an option of another technique).
