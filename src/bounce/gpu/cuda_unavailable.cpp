@@ -2,6 +2,7 @@
 #include "bounce/core/error.h"
 #include "bounce/gpu/cuda_device.h"
 #include "bounce/gpu/cuda_pipeline.h"
+#include "bounce/gpu/device_denoiser_check.h"
 
 namespace bounce {
 
@@ -29,6 +30,18 @@ bool cuda_backend_built() {
 
 std::unique_ptr<DevicePipeline> make_cuda_pipeline() {
   fail("--device cuda: {}", kNotBuilt);
+}
+
+struct DeviceDenoiserHost::Impl {};
+
+DeviceDenoiserHost::DeviceDenoiserHost() {
+  fail("device denoiser: {}", kNotBuilt);
+}
+DeviceDenoiserHost::~DeviceDenoiserHost() = default;
+
+void DeviceDenoiserHost::run(const DenoiseSettings&, const GBuffer&, HistoryState, bool, Image&,
+                             Image*) {
+  fail("device denoiser: {}", kNotBuilt);
 }
 
 }  // namespace bounce

@@ -1,0 +1,378 @@
+// DeviceDenoiser (device_denoiser.h): Denoiser::run's passes in the same order, each pass a
+// launch of the CPU's per-pixel body (the *_pixel entry points of render/denoise_*.h). Planes
+// have no padding here: the GPU bodies clamp their taps.
+#include "bounce/gpu/device_denoiser.h"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+#include "bounce/gpu/launch.h"
+#include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_half.h"
+#include "bounce/render/denoise_temporal.h"
+#include "bounce/render/denoise_variance.h"
+
+namespace bounce {
+
+// Launchers, outside the class: device lambdas may not sit in private members.
+namespace device_denoise {
+
+template <bool kIndirect, bool kRest>
+void temporal(const denoise::TemporalPass& pass, uint32_t* row_short) {
+  const denoise::TemporalPass p = pass;
+  launch_2d(p.width, p.height, [=] __device__(int x, int y) {
+    // Every writer stores the same 1: the race is harmless.
+    if (denoise::temporal_pixel<kIndirect, kRest>(p, x, y)) row_short[y] = 1u;
+  });
+}
+
+void depth_slope(const float* depth, int w, int h, float* slope) {
+  launch_2d(w, h, [=] __device__(int x, int y) {
+    const size_t row = size_t(y) * size_t(w);
+    const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
+    slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
+  });
+}
+
+// The box sums on rows within the box of a short row, then the spatial estimate on short rows
+// (the rows the CPU computes; the others are not read).
+void spatial_variance(const denoise::BoxPass& box, const denoise::VariancePass& variance,
+                      const uint32_t* row_short) {
+  const denoise::BoxPass b = box;
+  const denoise::VariancePass v = variance;
+  const int h = v.height;
+  launch_2d(v.width, h, [=] __device__(int x, int y) {
+    bool needed = false;
+    const int y0 = y - denoise::kVarianceBox > 0 ? y - denoise::kVarianceBox : 0;
+    const int y1 = y + denoise::kVarianceBox < h - 1 ? y + denoise::kVarianceBox : h - 1;
+    for (int k = y0; k <= y1; ++k) needed |= row_short[k] != 0;
+    if (needed) denoise::box_row_pixel(b, size_t(y) * size_t(b.width), x);
+  });
+  launch_2d(v.width, h, [=] __device__(int x, int y) {
+    if (row_short[y] != 0) denoise::spatial_variance_pixel(v, x, y);
+  });
+}
+
+template <bool kIndirect, bool kVariance>
+void atrous(const denoise::AtrousPass& pass) {
+  const denoise::AtrousPass p = pass;
+  launch_2d(p.width, p.height, [=] __device__(int x, int y) {
+    denoise::atrous_pixel<1, kIndirect, kVariance>(p, x, y);
+  });
+}
+
+// As denoiser.cpp's run_atrous: `iterations` passes, outputs(k, pass) points pass k's outputs.
+template <typename Outputs>
+denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iterations,
+                               const Outputs& outputs) {
+  for (int k = 0; k < iterations; ++k) {
+    outputs(k, pass);
+    pass.step = 1 << k;
+    const bool variance = k + 1 < iterations;  // the last pass's would guide nothing
+    if (both)
+      variance ? atrous<true, true>(pass) : atrous<true, false>(pass);
+    else
+      variance ? atrous<false, true>(pass) : atrous<false, false>(pass);
+    pass.direct.in = pass.direct.out;
+    pass.direct.in_var = pass.direct.out_var;
+    pass.indirect.in = pass.indirect.out;
+    pass.indirect.in_var = pass.indirect.out_var;
+  }
+  return pass;
+}
+
+void downsample(const denoise::HalfDownsample& pass, int half_height) {
+  const denoise::HalfDownsample p = pass;
+  launch_2d(p.half_width, half_height,
+            [=] __device__(int x, int y) { denoise::downsample_pixel(p, x, y); });
+}
+
+void upsample(const denoise::HalfUpsample& pass) {
+  const denoise::HalfUpsample p = pass;
+  launch_2d(p.width, p.height, [=] __device__(int x, int y) { denoise::upsample_pixel(p, x, y); });
+}
+
+template <bool kIndirect, bool kRest>
+void remodulate(const denoise::RemodulatePass& pass, size_t n) {
+  const denoise::RemodulatePass p = pass;
+  launch(n, [=] __device__(uint32_t i) { denoise::remodulate_pixel<kIndirect, kRest>(p, i); });
+}
+
+}  // namespace device_denoise
+
+void DeviceDenoiser::Surface::resize(size_t n) {
+  for (auto* b : {&depth, &nx, &ny, &nz}) {
+    b->resize(n);
+    b->fill_zero();
+  }
+  object.resize(n);
+  if (n) BOUNCE_CUDA(cudaMemset(object.data(), 0xFF, n * sizeof(uint32_t)));  // kNoPrimitive
+}
+
+denoise::SurfacePlanes DeviceDenoiser::Surface::view() {
+  return {depth.data(), nx.data(), ny.data(), nz.data(), object.data()};
+}
+
+void DeviceDenoiser::Rgb::resize(size_t n) {
+  for (auto* b : {&r, &g, &b}) {
+    b->resize(n);
+    b->fill_zero();
+  }
+}
+
+denoise::RgbPlanes DeviceDenoiser::Rgb::view() {
+  return {r.data(), g.data(), b.data()};
+}
+
+// As Denoiser's Buffers::resize: with keep_last the last run's surfaces, history and lengths
+// keep their old size, to be reprojected across the size change.
+void DeviceDenoiser::resize(int w, int h, bool keep_last) {
+  width_ = w;
+  height_ = h;
+  const size_t n = size_t(w) * size_t(h);
+  if (!keep_last) {
+    surface_.resize(n);
+    history_.resize(n);
+    history_.fill_zero();
+    length_.resize(n);
+    length_.fill_zero();
+  }
+  prev_surface_.resize(n);
+  prev_history_.resize(n);
+  prev_history_.fill_zero();
+  prev_length_.resize(n);
+  prev_length_.fill_zero();
+  for (Rgb* p :
+       {&rest_factor_, &rest_emission_, &light_direct_, &light_indirect_, &upsampled_,
+        &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
+    p->resize(n);
+  for (auto* b : {&box_[0], &box_[1], &box_[2], &box_[3], &box_[4], &depth_slope_, &var_direct_,
+                  &var_indirect_, &filter_var_direct_[0], &filter_var_direct_[1],
+                  &filter_var_indirect_[0], &filter_var_indirect_[1]}) {
+    b->resize(n);
+    b->fill_zero();
+  }
+  row_short_.resize(size_t(h));
+  motion_.resize(n);
+  half_width_ = (w + 1) / 2;
+  half_height_ = (h + 1) / 2;
+  const size_t half_n = size_t(half_width_) * size_t(half_height_);
+  half_surface_.resize(half_n);
+  half_slope_.resize(half_n);
+  for (int k = 0; k < 3; ++k) {
+    half_light_[k].resize(half_n);
+    half_var_[k].resize(half_n);
+    half_var_[k].fill_zero();
+  }
+  valid_ = valid_ && keep_last;
+}
+
+void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFrame& frame,
+                         vec3* direct, vec3* indirect) {
+  using denoise::ConstRgbPlanes;
+  using denoise::ConstSurfacePlanes;
+  const ConstGBufferView g = frame.g;
+  const int w = g.width, h = g.height;
+  if (w <= 0 || h <= 0) return;
+  const size_t n = size_t(w) * size_t(h);
+  const bool has_indirect = indirect != nullptr;
+  HistoryState state = frame.state;
+  int prev_width = w, prev_height = h;
+  if (width_ != w || height_ != h) {
+    const bool keep_last = valid_ && state != HistoryState::kReset && settings.temporal;
+    if (keep_last) {
+      prev_width = width_;
+      prev_height = height_;
+    }
+    resize(w, h, keep_last);
+    if (!keep_last) {
+      length_.resize(n);
+      length_.fill_zero();
+    }
+  }
+  const bool resized = prev_width != w || prev_height != h;
+  if (!valid_ || had_indirect_ != has_indirect) state = HistoryState::kReset;
+  valid_ = true;
+  had_indirect_ = has_indirect;
+  std::swap(surface_, prev_surface_);
+  std::swap(history_, prev_history_);
+  std::swap(length_, prev_length_);
+  // (The swapped-in planes keep the size of the run that last wrote them; this run writes n.)
+  surface_.depth.resize(n);
+  surface_.nx.resize(n);
+  surface_.ny.resize(n);
+  surface_.nz.resize(n);
+  surface_.object.resize(n);
+  history_.resize(n);
+  length_.resize(n);
+
+  const DenoiseSettings& s = settings;
+  const bool rest = state == HistoryState::kRest && s.temporal;
+  const float cap_direct =
+      rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
+  const float accumulated_cap =
+      state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
+  const float cap_indirect =
+      frame.indirect_accumulated ? std::min(cap_direct, accumulated_cap) : cap_direct;
+
+  row_short_.fill_zero();
+  {
+    denoise::TemporalPass temporal;
+    temporal.g = g;
+    temporal.direct = direct;
+    temporal.indirect = indirect;
+    temporal.prev_surface = ConstSurfacePlanes(prev_surface_.view());
+    temporal.prev = prev_history_.data();
+    temporal.prev_length = prev_length_.data();
+    temporal.next = history_.data();
+    temporal.surface = surface_.view();
+    temporal.light_direct = light_direct_.view();
+    temporal.light_indirect = light_indirect_.view();
+    temporal.var_direct = var_direct_.data();
+    temporal.var_indirect = var_indirect_.data();
+    temporal.length = length_.data();
+    temporal.motion = motion_.data();
+    temporal.width = w;
+    temporal.height = h;
+    temporal.prev_width = prev_width;
+    temporal.prev_height = prev_height;
+    denoise::TemporalSettings& ts = temporal.s;
+    ts.history = s.temporal && state != HistoryState::kReset;
+    ts.reproject =
+        resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
+    ts.clip = state == HistoryState::kWorldChanged;
+    ts.rest_continues = rest && rest_valid_ && !resized;
+    ts.cap_direct = cap_direct;
+    ts.cap_indirect = cap_indirect;
+    ts.clip_gamma = s.clip_gamma;
+    ts.depth_tolerance = s.depth_tolerance;
+    ts.normal_tolerance = s.normal_tolerance;
+    const bool update_rest = rest || state == HistoryState::kReset;
+    temporal.rest = {rest_factor_.view(), rest_emission_.view()};
+    uint32_t* row_short = row_short_.data();
+    if (has_indirect)
+      update_rest ? device_denoise::temporal<true, true>(temporal, row_short)
+                  : device_denoise::temporal<true, false>(temporal, row_short);
+    else
+      update_rest ? device_denoise::temporal<false, true>(temporal, row_short)
+                  : device_denoise::temporal<false, false>(temporal, row_short);
+  }
+  rest_valid_ = rest || state == HistoryState::kReset;
+
+  ConstRgbPlanes light_d = light_direct_.view();
+  ConstRgbPlanes light_i = light_indirect_.view();
+  const bool spatial = s.spatial && s.atrous_iterations > 0;
+  const float* depth = surface_.depth.data();
+  if (spatial) {
+    device_denoise::depth_slope(depth, w, h, depth_slope_.data());
+    denoise::BoxPass box;
+    box.history = history_.data();
+    box.depth = depth;
+    for (int k = 0; k < 5; ++k) box.sums[k] = box_[k].data();
+    box.width = w;
+    denoise::VariancePass variance;
+    variance.depth = depth;
+    variance.length = length_.data();
+    for (int k = 0; k < 5; ++k) variance.sums[k] = box_[k].data();
+    variance.var_direct = var_direct_.data();
+    variance.var_indirect = var_indirect_.data();
+    variance.width = w;
+    variance.height = h;
+    variance.cap_indirect = cap_indirect;
+    device_denoise::spatial_variance(box, variance, row_short_.data());
+  }
+  denoise::AtrousPass base;
+  base.surface = ConstSurfacePlanes(surface_.view());
+  base.depth_slope = depth_slope_.data();
+  base.direct = {light_d, var_direct_.data(), {}, nullptr};
+  base.indirect = {light_i, var_indirect_.data(), {}, nullptr};
+  base.width = w;
+  base.height = h;
+  base.sigma_luminance = s.sigma_luminance;
+  base.sigma_luminance_indirect = s.sigma_luminance_indirect;
+  base.sigma_normal = s.sigma_normal;
+  base.sigma_depth = s.sigma_depth;
+  const int indirect_iterations =
+      spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, h) : 0;
+  const bool half = indirect_iterations > 0 && s.indirect_resolution == 2;
+  const bool both = indirect_iterations > 0 && !half && indirect_iterations == s.atrous_iterations;
+  if (spatial) {
+    auto outputs = [this](int k, denoise::AtrousPass& pass) {
+      pass.direct.out = filter_direct_[k & 1].view();
+      pass.direct.out_var = filter_var_direct_[k & 1].data();
+      pass.indirect.out = filter_indirect_[k & 1].view();
+      pass.indirect.out_var = filter_var_indirect_[k & 1].data();
+    };
+    const denoise::AtrousPass result =
+        device_denoise::run_atrous(base, both, s.atrous_iterations, outputs);
+    light_d = result.direct.in;
+    if (both) light_i = result.indirect.in;
+  }
+  if (indirect_iterations > 0 && !both) {
+    denoise::AtrousPass indirect_base = base;
+    indirect_base.direct = base.indirect;
+    indirect_base.sigma_luminance = s.sigma_luminance_indirect;
+    if (half) {
+      const int hw = half_width_, hh = half_height_;
+      denoise::HalfDownsample down;
+      down.surface = indirect_base.surface;
+      down.light = light_i;
+      down.variance = indirect_base.direct.in_var;
+      down.width = w;
+      down.height = h;
+      down.half_surface = half_surface_.view();
+      down.half_light = half_light_[0].view();
+      down.half_variance = half_var_[0].data();
+      down.half_width = hw;
+      device_denoise::downsample(down, hh);
+      device_denoise::depth_slope(half_surface_.depth.data(), hw, hh, half_slope_.data());
+      denoise::AtrousPass pass = indirect_base;
+      pass.surface = ConstSurfacePlanes(half_surface_.view());
+      pass.depth_slope = half_slope_.data();
+      pass.direct = {half_light_[0].view(), half_var_[0].data(), {}, nullptr};
+      pass.width = hw;
+      pass.height = hh;
+      auto outputs = [this](int k, denoise::AtrousPass& p) {
+        p.direct.out = half_light_[1 + (k & 1)].view();
+        p.direct.out_var = half_var_[1 + (k & 1)].data();
+      };
+      const denoise::AtrousPass result =
+          device_denoise::run_atrous(pass, false, indirect_iterations, outputs);
+      denoise::HalfUpsample up;
+      up.surface = indirect_base.surface;
+      up.depth_slope = indirect_base.depth_slope;
+      up.light = light_i;
+      up.half_surface = ConstSurfacePlanes(half_surface_.view());
+      up.half_light = result.direct.in;
+      up.width = w;
+      up.height = h;
+      up.half_width = hw;
+      up.half_height = hh;
+      up.sigma_depth = indirect_base.sigma_depth;
+      up.out = upsampled_.view();
+      device_denoise::upsample(up);
+      light_i = upsampled_.view();
+    } else {
+      // The direct result sits in the ping-pong's direct planes; these are the indirect ones.
+      auto outputs = [this](int k, denoise::AtrousPass& p) {
+        p.direct.out = filter_indirect_[k & 1].view();
+        p.direct.out_var = filter_var_indirect_[k & 1].data();
+      };
+      light_i =
+          device_denoise::run_atrous(indirect_base, false, indirect_iterations, outputs).direct.in;
+    }
+  }
+  const denoise::RemodulatePass remodulate{
+      g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},
+      light_d, light_i,
+      direct,  indirect};
+  if (has_indirect)
+    rest ? device_denoise::remodulate<true, true>(remodulate, n)
+         : device_denoise::remodulate<true, false>(remodulate, n);
+  else
+    rest ? device_denoise::remodulate<false, true>(remodulate, n)
+         : device_denoise::remodulate<false, false>(remodulate, n);
+}
+
+}  // namespace bounce

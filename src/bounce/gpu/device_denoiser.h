@@ -1,0 +1,63 @@
+// The denoiser stage on the GPU: what Denoiser::run (render/denoiser.h) does, on device arrays,
+// from the same per-pixel bodies (render/denoise_*.h), one thread per pixel where the CPU runs
+// vectorised row loops. Debug views and raw copies are the CPU's only.
+#pragma once
+
+#include <cstdint>
+
+#include "bounce/gpu/device_buffer.h"
+#include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoiser.h"
+#include "bounce/render/gbuffer_view.h"
+
+namespace bounce {
+
+struct DeviceDenoiseFrame {
+  ConstGBufferView g;  // device pointers, this frame's G-buffer with motion
+  HistoryState state;
+  bool indirect_accumulated;
+};
+
+class DeviceDenoiser {
+ public:
+  // Replaces direct (and indirect when not null) in place, as Denoiser::run does; both are
+  // device arrays of g.width * g.height.
+  void run(const DenoiseSettings& settings, const DeviceDenoiseFrame& frame, vec3* direct,
+           vec3* indirect);
+
+ private:
+  // The CPU's Buffers as plain device planes (device_denoiser.cu documents them).
+  struct Surface {
+    DeviceBuffer<float> depth, nx, ny, nz;
+    DeviceBuffer<uint32_t> object;
+    void resize(size_t n);
+    denoise::SurfacePlanes view();
+  };
+  struct Rgb {
+    DeviceBuffer<float> r, g, b;
+    void resize(size_t n);
+    denoise::RgbPlanes view();
+  };
+  void resize(int w, int h, bool keep_last);
+
+  int width_ = 0, height_ = 0;
+  bool valid_ = false, had_indirect_ = false, rest_valid_ = false;
+  Surface surface_, prev_surface_, half_surface_;
+  DeviceBuffer<denoise::HistoryTexel> history_, prev_history_;
+  DeviceBuffer<float> length_, prev_length_;
+  Rgb rest_factor_, rest_emission_, light_direct_, light_indirect_;
+  DeviceBuffer<float> box_[5];
+  DeviceBuffer<float> depth_slope_, var_direct_, var_indirect_;
+  DeviceBuffer<uint32_t> row_short_;
+  DeviceBuffer<vec2> motion_;
+  // a-trous ping-pong: direct rgb and variance, indirect rgb and variance
+  Rgb filter_direct_[2], filter_indirect_[2];
+  DeviceBuffer<float> filter_var_direct_[2], filter_var_indirect_[2];
+  int half_width_ = 0, half_height_ = 0;
+  DeviceBuffer<float> half_slope_;
+  Rgb half_light_[3];
+  DeviceBuffer<float> half_var_[3];
+  Rgb upsampled_;
+};
+
+}  // namespace bounce
