@@ -21,7 +21,7 @@ struct Pair {
 
 // Renders `frames` frames of `technique` at rest on both backends; returns the last of each.
 Pair render_both(const std::string& scene_spec, const std::string& technique, int frames,
-                 bool accumulate, int size = 128) {
+                 bool accumulate, bool denoise = false, int size = 128) {
   Scene scene = load_scene(scene_spec);
   FrameSettings settings;
   settings.width = settings.height = size;
@@ -29,6 +29,7 @@ Pair render_both(const std::string& scene_spec, const std::string& technique, in
   settings.accumulate = accumulate;
   settings.jitter = accumulate;
   settings.seed = 5;
+  settings.denoise = denoise;
   Pair out;
   for (int device = 0; device < 2; ++device) {
     auto tracer = make_embree_tracer(scene);
@@ -63,6 +64,19 @@ TEST(CudaPipeline, TiledMatchesTheCpuFrameByFrameAndConverged) {
   // And the GPU's indirect light is there: the direct-only frame differs clearly.
   const Pair direct = render_both("cornell", "direct", 16, true);
   EXPECT_LT(compare_images(many.gpu, direct.gpu).srgb8.mssim, 0.95);
+}
+
+TEST(CudaPipeline, DenoisedFramesMatchTheCpu) {
+  BOUNCE_REQUIRE_GPU();
+  // The first frame (filtered alone) and the eighth (history at rest) of the viewer's pipeline.
+  for (int frames : {1, 8}) {
+    const Pair p = render_both("cornell", "tiled", frames, true, true);
+    const Pair raw = render_both("cornell", "tiled", frames, true, false);
+    const ImageComparison c = compare_images(p.cpu, p.gpu);
+    EXPECT_GT(c.srgb8.mssim, 0.98) << frames;
+    // The filter did something: the GPU's denoised frame is nearer the CPU's than a raw one.
+    EXPECT_LT(c.srgb8.mse, compare_images(p.cpu, raw.gpu).srgb8.mse) << frames;
+  }
 }
 
 TEST(CudaPipeline, AMovingCameraStillMatches) {

@@ -5,6 +5,7 @@
 
 #include "bounce/core/color.h"
 #include "bounce/gpu/cuda_device.h"
+#include "bounce/gpu/device_denoiser.h"
 #include "bounce/gpu/device_gbuffer.h"
 #include "bounce/gpu/device_scene.h"
 #include "bounce/gpu/device_tiled.h"
@@ -68,6 +69,7 @@ class CudaPipeline final : public DevicePipeline {
   DeviceScene scene_;
   DeviceGBuffer g_;
   DeviceTiled tiled_;
+  DeviceDenoiser denoiser_;
   DeviceBuffer<vec3> direct_, indirect_, color_, direct_sum_;
   DeviceBuffer<uint32_t> shadow_rays_;
   DeviceBuffer<uint8_t> ldr_;
@@ -97,12 +99,13 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   if (technique != "direct" && !tiled)
     gpu_fail("--device cuda: technique '" + technique +
              "' does not run on the GPU yet (direct and tiled do)");
-  if (in.settings.denoise)
-    gpu_fail("--device cuda: the denoiser does not run on the GPU yet: add --no-denoise");
   const FrameSettings& settings = in.settings;
   const int w = settings.width, h = settings.height;
   const size_t n = size_t(w) * size_t(h);
   f.technique = TechniqueCounters{};
+  // The denoiser's temporal part takes over the averaging at rest (as in Renderer::render).
+  const bool denoise = settings.denoise;
+  const bool average = !(denoise && in.denoiser.settings().temporal);
 
   events_.begin("scene upload");
   scene_.update(in.scene, in.scene_data, in.lights, in.change);
@@ -157,7 +160,7 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
       out[i] = sum;
       counts[i] = traced;
     });
-    average_at_rest(direct_, direct_sum_, in.rest, f.frames_averaged);
+    if (average) average_at_rest(direct_, direct_sum_, in.rest, f.frames_averaged);
   }
   events_.end();
 
@@ -166,6 +169,14 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
     events_.begin("indirect");
     indirect_.resize(n);
     tiled_.indirect(scene_, g, rays, indirect_.data());
+    events_.end();
+  }
+
+  if (denoise) {
+    // Debug views (FrameSettings::view) are the CPU's only: the GPU shows the denoised image.
+    events_.begin("denoise");
+    denoiser_.run(in.denoiser.settings(), DeviceDenoiseFrame{g, in.history, indirect},
+                  direct_.data(), indirect ? indirect_.data() : nullptr);
     events_.end();
   }
 
