@@ -11,6 +11,7 @@
 #include "bounce/core/image_io.h"
 #include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
+#include "bounce/core/timer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/reference.h"
 #include "input_checks.h"
@@ -34,6 +35,8 @@ struct ReferenceOptions {
   float exposure_ev = 0.0f;
   float at = 0.0f;  // animation time
   std::string out;
+  std::string checkpoint;          // resume from and save to this file (empty: none)
+  double checkpoint_every_s = 60;  // seconds between checkpoint saves
 };
 
 std::string default_output(const std::string& scene) {
@@ -58,10 +61,32 @@ void run_reference(const ReferenceOptions& o) {
 
   check_memory(scene, o.width, o.height, kReferenceBytesPerPixel);
 
+  // A checkpoint resumes the samples of an earlier run with the same key, and is saved every
+  // checkpoint_every_s seconds and when the run is interrupted.
+  ReferenceState state;
+  const ReferenceCheckpointKey key{
+      fmt::format("{} at {}", o.scene, o.at), o.width, o.height, o.seed, o.max_bounces, o.rr_start};
+  if (!o.checkpoint.empty() && std::filesystem::exists(o.checkpoint)) {
+    state = load_reference_checkpoint(o.checkpoint, key);
+    fmt::print("resuming {} from {} spp\n", o.checkpoint, state.spp);
+  }
+  Stopwatch since_save;
+  const auto save_checkpoint = [&] {
+    save_reference_checkpoint(o.checkpoint, key, state);
+    since_save = Stopwatch();
+  };
+
   // Progress: in place on a terminal, every 10% in a log.
   ProgressLine line;
   int last_tenth = -1;
   const auto progress = [&](const ReferenceProgress& p) {
+    if (!o.checkpoint.empty() &&
+        (interrupt_signal() != 0 || since_save.elapsed_ms() >= 1e3 * o.checkpoint_every_s)) {
+      save_checkpoint();
+      if (interrupt_signal() != 0)
+        warn(fmt::format("saved {} spp to {}: run the same command to resume", state.spp,
+                         o.checkpoint));
+    }
     throw_if_interrupted();  // between passes: the partial image is dropped
     const int percent = int(std::floor(100.0 * p.fraction));
     const bool due = percent / 10 > last_tenth;
@@ -70,10 +95,12 @@ void run_reference(const ReferenceOptions& o) {
                           p.spp_target, clock_text(p.elapsed_s), clock_text(p.eta_s)),
               due);
   };
-  const ReferenceResult r = render_reference(scene, *tracer, scene.camera, settings, progress);
+  const ReferenceResult r =
+      render_reference(scene, *tracer, scene.camera, settings, progress, &state);
   line.finish();
   throw_if_interrupted();
   save_image(out, r.image, o.exposure_ev);
+  if (!o.checkpoint.empty()) save_checkpoint();  // a later run with more --spp goes on from here
   const std::string bounces =
       o.max_bounces < 0 ? std::string("unlimited") : fmt::format("{}", o.max_bounces);
   fmt::print("reference {} {}x{}: {} spp, max bounces {}, seed {}\n", scene.source, o.width,
@@ -124,6 +151,13 @@ void add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--exposure", o->exposure_ev, "Exposure in stops for PNG output")
       ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))
+      ->capture_default_str();
+  cmd->add_option("--checkpoint", o->checkpoint,
+                  "Save the samples to this file as the run goes (and when interrupted); when it "
+                  "exists, resume from it: the result equals an uninterrupted run")
+      ->check(non_empty_path());
+  cmd->add_option("--checkpoint-every", o->checkpoint_every_s, "Seconds between checkpoint saves")
+      ->check(CLI::Range(0.0, 1e7))
       ->capture_default_str();
   cmd->add_option("-o,--out", o->out,
                   "Output: .exr or .pfm (linear), .png (tone-mapped); default "

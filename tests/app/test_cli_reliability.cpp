@@ -259,8 +259,10 @@ TEST(CliReliability, WronglyTypedGltfValuesAreReported) {
 }
 
 // Starts bounce with `args` (stdout and stderr to `log`), waits until it has installed its
-// signal handlers, sends `signal`, and returns the exit status (-1: it did not exit normally).
-int interrupt_run(const std::vector<std::string>& args, const fs::path& log, int signal) {
+// signal handlers (and, when given, until `wait_for` exists), sends `signal`, and returns the exit
+// status (-1: it did not exit normally).
+int interrupt_run(const std::vector<std::string>& args, const fs::path& log, int signal,
+                  const fs::path& wait_for = {}) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -282,6 +284,8 @@ int interrupt_run(const std::vector<std::string>& args, const fs::path& log, int
     return false;
   };
   for (int i = 0; i < 3000 && !caught(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 3000 && !wait_for.empty() && !fs::exists(wait_for); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ::kill(pid, signal);
   int status = 0;
@@ -315,6 +319,54 @@ TEST(CliReliability, SignalsStopCleanlyAndLeaveOutputsAlone) {
             << args[0] << " left " << entry.path();
     }
   }
+}
+
+TEST(CliReliability, AnInterruptedReferenceResumesFromItsCheckpointToTheSameImage) {
+  const fs::path dir = scratch_dir("checkpoint");
+  const std::string ck = (dir / "cornell.ckpt").string();
+  const auto reference = [&](int spp, const fs::path& out, bool checkpoint) {
+    std::string args =
+        "reference cornell -W 24 -H 24 --spp " + std::to_string(spp) + " -o " + out.string();
+    if (checkpoint) args += " --checkpoint " + ck;
+    return run(args);
+  };
+  // Interrupted after its first pass (the first checkpoint): the samples so far are saved, and
+  // the run says how to go on.
+  const int status = interrupt_run(
+      {"reference", "cornell", "-W", "24", "-H", "24", "--spp", "1000000", "--checkpoint", ck,
+       "--checkpoint-every", "0", "-o", (dir / "never.pfm").string()},
+      dir / "log.txt", SIGINT);
+  const std::string log = read(dir / "log.txt");
+  EXPECT_EQ(status, 128 + SIGINT) << log;
+  EXPECT_NE(log.find("run the same command to resume"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "never.pfm"));
+  const std::string saved = read(ck);
+  const size_t at = saved.find("\nspp=");
+  ASSERT_NE(at, std::string::npos);
+  const int spp = std::stoi(saved.substr(at + 5));
+  ASSERT_GT(spp, 0);
+  // Resumed to a few more samples, it equals one uninterrupted run of that many.
+  const Result resumed = reference(spp + 3, dir / "resumed.pfm", true);
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming"), std::string::npos) << resumed.output;
+  ASSERT_EQ(reference(spp + 3, dir / "whole.pfm", false).status, 0);
+  EXPECT_EQ(read(dir / "resumed.pfm"), read(dir / "whole.pfm"));
+  // Another run's settings, a damaged file or too few samples asked for: clear errors.
+  const Result other = run("reference cornell -W 24 -H 24 --seed 9 --spp 99999 --checkpoint " + ck);
+  EXPECT_EQ(other.status, 1);
+  EXPECT_NE(other.output.find("made with seed=0, this run has seed=9"), std::string::npos)
+      << other.output;
+  const Result fewer = reference(spp, dir / "fewer.pfm", true);
+  EXPECT_EQ(fewer.status, 1);
+  EXPECT_NE(fewer.output.find("already taken"), std::string::npos) << fewer.output;
+  write(ck, saved.substr(0, saved.size() - 100));
+  const Result damaged = reference(spp + 9, dir / "damaged.pfm", true);
+  EXPECT_EQ(damaged.status, 1);
+  EXPECT_NE(damaged.output.find("damaged reference checkpoint"), std::string::npos)
+      << damaged.output;
+  write(ck, "not a checkpoint");
+  EXPECT_NE(reference(spp + 9, dir / "x.pfm", true).output.find("not a bounce reference"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -120,7 +120,8 @@ std::string temporary_path(const std::string& path) {
 
 // Writes a temporary file and renames it over the target, so the target is either the old file
 // or the complete new one, never a partial write.
-void write_file_atomically(const std::string& path, const Bytes& bytes) {
+void write_file_atomically(const std::string& path, const Bytes& bytes,
+                           bool finish_when_interrupted = false) {
   const fs::path target(path);
   const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
@@ -137,8 +138,9 @@ void write_file_atomically(const std::string& path, const Bytes& bytes) {
     fs::remove(temporary, ec);
     fail("cannot write {}: {}", path, problem);
   }
-  // A signal during the write: leave the target as it was and no temporary file behind.
-  if (interrupt_signal() != 0) {
+  // A signal during the write: leave the target as it was and no temporary file behind (unless
+  // the write is what the interrupt is for, as a checkpoint is).
+  if (interrupt_signal() != 0 && !finish_when_interrupted) {
     fs::remove(temporary, ec);
     throw_if_interrupted();
   }
@@ -496,8 +498,9 @@ void save_png_rgb8(const std::string& path, int width, int height, const uint8_t
   write_file_atomically(path, bytes);
 }
 
-void save_text_file(const std::string& path, const std::string& text) {
-  write_file_atomically(path, Bytes(text.begin(), text.end()));
+void save_text_file(const std::string& path, const std::string& text,
+                    bool finish_when_interrupted) {
+  write_file_atomically(path, Bytes(text.begin(), text.end()), finish_when_interrupted);
 }
 
 }  // namespace bounce

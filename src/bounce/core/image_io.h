@@ -24,6 +24,9 @@ void save_image(const std::string& path, const Image& image, float exposure_ev =
 void save_png_rgb8(const std::string& path, int width, int height, const uint8_t* rgb);
 
 // Writes text (a JSON report, ...) to `path` with the same atomic rename as the image savers.
-void save_text_file(const std::string& path, const std::string& text);
+// Like them it abandons the write when SIGINT or SIGTERM arrived, unless
+// finish_when_interrupted (a checkpoint: the very file an interrupt should leave).
+void save_text_file(const std::string& path, const std::string& text,
+                    bool finish_when_interrupted = false);
 
 }  // namespace bounce

@@ -197,3 +197,36 @@ TEST(PathTechnique, AccumulatesUntilTheCameraOrAParameterChanges) {
 
 }  // namespace
 }  // namespace bounce
+
+namespace bounce {
+namespace {
+
+TEST(PathReference, AResumedRunEqualsAnUninterruptedOne) {
+  const Scene s = make_cornell();
+  auto tracer = make_embree_tracer(s);
+  ReferenceSettings settings;
+  settings.width = settings.height = 12;
+  settings.spp = 7;
+  const Image whole = render_reference(s, *tracer, s.camera, settings).image;
+  ReferenceState state;
+  settings.spp = 3;
+  render_reference(s, *tracer, s.camera, settings, {}, &state);
+  EXPECT_EQ(state.spp, 3);
+  // Through a checkpoint file and back, bit for bit.
+  const std::string path = ::testing::TempDir() + "/bounce-resume.ckpt";
+  const ReferenceCheckpointKey key{"cornell", 12, 12, 0, -1, 3};
+  save_reference_checkpoint(path, key, state);
+  ReferenceState loaded = load_reference_checkpoint(path, key);
+  EXPECT_EQ(loaded.sums, state.sums);
+  settings.spp = 7;
+  const ReferenceResult resumed = render_reference(s, *tracer, s.camera, settings, {}, &loaded);
+  EXPECT_EQ(resumed.spp, 7);
+  EXPECT_EQ(resumed.image.pixels(), whole.pixels());
+  // A key that differs in anything is refused.
+  ReferenceCheckpointKey other = key;
+  other.max_bounces = 2;
+  EXPECT_THROW(load_reference_checkpoint(path, other), Error);
+}
+
+}  // namespace
+}  // namespace bounce

@@ -43,7 +43,7 @@ void render_tile(const PathScene& ps, const PathSettings& path, const CameraRays
 
 ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const Camera& camera,
                                  const ReferenceSettings& settings,
-                                 const ReferenceProgressFn& progress) {
+                                 const ReferenceProgressFn& progress, ReferenceState* state) {
   if (settings.width <= 0 || settings.height <= 0)
     fail("image size {}x{} is not positive", settings.width, settings.height);
   if (settings.spp <= 0) fail("samples per pixel must be positive (got {})", settings.spp);
@@ -56,18 +56,33 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
   path.min_bounces = 0;
   const int w = settings.width, h = settings.height;
   const CameraRays camera_rays = CameraRays::from(camera, w, h);
-  std::vector<double> sums(size_t(w) * h * 3, 0.0);
+  ReferenceState own;
+  ReferenceState& st = state ? *state : own;
+  if (st.sums.empty()) {
+    st.width = w;
+    st.height = h;
+    st.spp = 0;
+    st.sums.assign(size_t(w) * h * 3, 0.0);
+  }
+  if (st.width != w || st.height != h || st.sums.size() != size_t(w) * h * 3)
+    fail("reference: the saved samples are {}x{}, the image is {}x{}", st.width, st.height, w, h);
+  if (st.spp < 0 || st.spp >= settings.spp)
+    fail("reference: {} samples per pixel are already taken; ask for more than that with --spp",
+         st.spp);
+  std::vector<double>& sums = st.sums;
   std::atomic<uint64_t> rays{0}, nonfinite{0};
 
   const Stopwatch watch;
   const double limit = settings.time_limit_s;
-  int done = 0, pass = 1;
+  const int resumed = st.spp;
+  int done = st.spp, pass = 1;
   while (done < settings.spp) {
     const double elapsed = watch.elapsed_ms() * 1e-3;
-    if (limit > 0.0 && done > 0 && elapsed >= limit) break;
+    const int taken = done - resumed;  // samples of this run: what the time limit measures
+    if (limit > 0.0 && taken > 0 && elapsed >= limit) break;
     int count = std::min(pass, settings.spp - done);
-    if (limit > 0.0 && done > 0)
-      count = std::min(count, std::max(1, int((limit - elapsed) / (elapsed / done))));
+    if (limit > 0.0 && taken > 0)
+      count = std::min(count, std::max(1, int((limit - elapsed) / (elapsed / taken))));
     parallel_for_tiles(w, h, kTile, [&](int x0, int y0, int x1, int y1) {
       PathCounters counters;
       render_tile(ps, path, camera_rays, settings.seed, x0, y0, x1, y1, done, count, w, sums.data(),
@@ -76,8 +91,9 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
       nonfinite += counters.nonfinite;
     });
     done += count;
+    st.spp = done;
     const double seconds = watch.elapsed_ms() * 1e-3;
-    const double per_spp = seconds / done;
+    const double per_spp = seconds / (done - resumed);
     pass = int(std::clamp(kPassSeconds / std::max(per_spp, 1e-9), 1.0, 65536.0));
     if (progress) {
       ReferenceProgress p;
@@ -86,7 +102,9 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
       p.elapsed_s = seconds;
       p.fraction = double(done) / settings.spp;
       if (limit > 0.0) p.fraction = std::max(p.fraction, std::min(1.0, seconds / limit));
-      p.eta_s = p.fraction > 0.0 ? seconds * (1.0 - p.fraction) / p.fraction : 0.0;
+      const double run_fraction = double(done - resumed) / (settings.spp - resumed);
+      p.eta_s = run_fraction > 0.0 ? seconds * (1.0 - run_fraction) / run_fraction : 0.0;
+      if (limit > 0.0) p.eta_s = std::min(p.eta_s, std::max(0.0, limit - seconds));
       progress(p);
     }
   }

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "bounce/core/image.h"
 #include "bounce/scene/camera.h"
@@ -40,11 +42,42 @@ struct ReferenceResult {
 
 using ReferenceProgressFn = std::function<void(const ReferenceProgress&)>;
 
+// Where a progressive reference stands: per-pixel sums of the samples taken so far, in sample
+// order. Samples are numbered per pixel, so a run that starts from a state continues exactly
+// where the interrupted one stopped: the resumed image equals an uninterrupted one.
+struct ReferenceState {
+  int width = 0, height = 0;
+  int spp = 0;               // samples per pixel in the sums
+  std::vector<double> sums;  // 3 per pixel, row-major
+};
+
+// What a checkpoint file must match to be resumed: the image and the light transport settings.
+// `scene` names the scene (its source, and the animation time).
+struct ReferenceCheckpointKey {
+  std::string scene;
+  int width = 0, height = 0;
+  uint32_t seed = 0;
+  int max_bounces = -1, rr_start = 3;
+  bool operator==(const ReferenceCheckpointKey&) const = default;
+};
+
+// Saves the state atomically (a temporary file renamed over `path`), in a binary file that
+// starts with the key; loads it back, failing with a message naming the file when it is not a
+// checkpoint, is damaged, or was made with another key.
+void save_reference_checkpoint(const std::string& path, const ReferenceCheckpointKey& key,
+                               const ReferenceState& state);
+ReferenceState load_reference_checkpoint(const std::string& path,
+                                         const ReferenceCheckpointKey& key);
+
 // Renders the scene through `camera` on all cores, in passes of whole samples per pixel (a pass
 // lasts about half a second); `progress` is called after each pass. The image for a given spp
 // and seed is the same whatever the thread count and the pass sizes.
+// With `state`, the run starts from its samples (it must be of the settings' size, with fewer
+// samples than settings.spp) and leaves the sums there after every pass, so a progress callback
+// can checkpoint them.
 ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const Camera& camera,
                                  const ReferenceSettings& settings,
-                                 const ReferenceProgressFn& progress = {});
+                                 const ReferenceProgressFn& progress = {},
+                                 ReferenceState* state = nullptr);
 
 }  // namespace bounce
