@@ -113,7 +113,9 @@ class EmbreeTracer final : public Tracer {
     }
   }
 
-  TraceView view() const override { return {scene_, spheres_.data(), uint32_t(spheres_.size())}; }
+  TraceView view() const override {
+    return {scene_, spheres_.data(), uint32_t(spheres_.size()), {}};
+  }
 
   void rebuild(const Scene& scene) override {
     Stopwatch watch;

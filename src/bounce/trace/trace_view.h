@@ -1,15 +1,18 @@
 // TraceView: how kernel bodies ask ray queries. A trivially copyable handle (the acceleration
 // structure and the sphere lights) with closest-hit and occlusion queries for single rays. On the
 // host its triangle queries go to Embree through out-of-line functions (so Embree's headers stay
-// inside trace/); on the device they will go to our own BVH (issue 13), whose traversal is only
-// declared here. Sphere lights are geometry: closest hit reports them and they block occlusion
-// rays, exactly as the Tracer's calls do.
+// inside trace/) when the view carries an Embree scene, and to our own BVH's traversal otherwise;
+// on the device they always go to the BVH (bvh_traversal.h, inline on both sides). Sphere lights
+// are geometry: closest hit reports them and they block occlusion rays, exactly as the Tracer's
+// calls do.
 #pragma once
 
 #include <cstdint>
 #include <type_traits>
 
 #include "bounce/core/device.h"
+#include "bounce/trace/bvh_traversal.h"
+#include "bounce/trace/bvh_view.h"
 #include "bounce/trace/ray.h"
 #include "bounce/trace/ray_sphere.h"
 
@@ -23,10 +26,12 @@ struct TraceSphere {
 };
 
 struct TraceView {
-  // Host: the Embree scene (RTCScene). Device: our BVH (issue 13).
+  // Host: the Embree scene (RTCScene), or null where the view traces our BVH. Unused on the device.
   const void* triangles = nullptr;
   const TraceSphere* spheres = nullptr;
   uint32_t sphere_count = 0;
+  // Our BVH (BvhTracer's view, or its copy on the device); empty for Embree's view.
+  BvhView bvh;
 
   BOUNCE_HD Hit intersect(const Ray& ray) const;
   BOUNCE_HD bool occluded(const Ray& ray) const;
@@ -36,13 +41,6 @@ static_assert(std::is_trivially_copyable_v<TraceView>);
 // Triangles only, on the host (trace/embree_tracer.cpp).
 Hit host_intersect_triangles(const void* triangles, const Ray& ray);
 bool host_occluded_triangles(const void* triangles, const Ray& ray);
-
-#if defined(__CUDACC__)
-// Triangles only, on the device: our own BVH's traversal (issue 13). Declared, not defined yet:
-// the nvcc build compiles kernels against it (relocatable device code) and links nothing.
-__device__ Hit device_intersect_triangles(const void* triangles, const Ray& ray);
-__device__ bool device_occluded_triangles(const void* triangles, const Ray& ray);
-#endif
 
 // Distance to the first sphere crossing in (tmin, limit), or infinity.
 BOUNCE_HD inline float trace_sphere_distance(const TraceSphere& s, const Ray& ray) {
@@ -77,9 +75,9 @@ BOUNCE_HD inline bool any_sphere(const TraceSphere* spheres, uint32_t count, con
 
 BOUNCE_HD inline Hit TraceView::intersect(const Ray& ray) const {
 #if BOUNCE_DEVICE_CODE
-  Hit hit = device_intersect_triangles(triangles, ray);
+  Hit hit = bvh_intersect(bvh, ray);
 #else
-  Hit hit = host_intersect_triangles(triangles, ray);
+  Hit hit = triangles ? host_intersect_triangles(triangles, ray) : bvh_intersect(bvh, ray);
 #endif
   closest_sphere(spheres, sphere_count, ray, hit);
   return hit;
@@ -88,9 +86,9 @@ BOUNCE_HD inline Hit TraceView::intersect(const Ray& ray) const {
 BOUNCE_HD inline bool TraceView::occluded(const Ray& ray) const {
   if (any_sphere(spheres, sphere_count, ray)) return true;
 #if BOUNCE_DEVICE_CODE
-  return device_occluded_triangles(triangles, ray);
+  return bvh_occluded(bvh, ray);
 #else
-  return host_occluded_triangles(triangles, ray);
+  return triangles ? host_occluded_triangles(triangles, ray) : bvh_occluded(bvh, ray);
 #endif
 }
 

@@ -1,6 +1,7 @@
-// Tracer: the one narrow interface for ray queries. Embree implements it on the CPU; a BVH of our
-// own will implement it for CUDA. Hits name the mesh and the triangle within it, or the sphere
-// light the ray ended on: sphere lights are geometry for every query (see trace_view.h).
+// Tracer: the one narrow interface for ray queries. Embree implements it on the CPU; our own BVH
+// (bvh.h) implements it too, on the CPU (BvhTracer) and as the traversal CUDA kernels run. Hits
+// name the mesh and the triangle within it, or the sphere light the ray ended on: sphere lights are
+// geometry for every query (see trace_view.h).
 #pragma once
 
 #include <cstdint>
@@ -48,5 +49,7 @@ enum class BuildQuality { kLow, kMedium, kHigh };
 
 std::unique_ptr<Tracer> make_embree_tracer(const Scene& scene,
                                            BuildQuality quality = BuildQuality::kHigh);
+// The Tracer on our own BVH (bvh_tracer.h).
+std::unique_ptr<Tracer> make_bvh_tracer(const Scene& scene);
 
 }  // namespace bounce
