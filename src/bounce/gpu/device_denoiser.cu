@@ -10,6 +10,7 @@
 #include "bounce/gpu/launch.h"
 #include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_half.h"
+#include "bounce/render/denoise_plan.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoise_variance.h"
 
@@ -282,21 +283,12 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     variance.cap_indirect = cap_indirect;
     device_denoise::spatial_variance(box, variance, row_short_.data());
   }
-  denoise::AtrousPass base;
-  base.surface = ConstSurfacePlanes(surface_.view());
-  base.depth_slope = depth_slope_.data();
-  base.direct = {light_d, var_direct_.data(), {}, nullptr};
-  base.indirect = {light_i, var_indirect_.data(), {}, nullptr};
-  base.width = w;
-  base.height = h;
-  base.sigma_luminance = s.sigma_luminance;
-  base.sigma_luminance_indirect = s.sigma_luminance_indirect;
-  base.sigma_normal = s.sigma_normal;
-  base.sigma_depth = s.sigma_depth;
-  const int indirect_iterations =
-      spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, h) : 0;
-  const bool half = indirect_iterations > 0 && s.indirect_resolution == 2;
-  const bool both = indirect_iterations > 0 && !half && indirect_iterations == s.atrous_iterations;
+  const denoise::AtrousPass base =
+      denoise::atrous_base(s, ConstSurfacePlanes(surface_.view()), depth_slope_.data(), light_d,
+                           var_direct_.data(), light_i, var_indirect_.data(), w, h);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h);
+  const int indirect_iterations = plan.indirect_iterations;
+  const bool half = plan.half, both = plan.both;
   if (spatial) {
     auto outputs = [this](int k, denoise::AtrousPass& pass) {
       pass.direct.out = filter_direct_[k & 1].view();

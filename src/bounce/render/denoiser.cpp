@@ -12,6 +12,7 @@
 #include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_plan.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoise_variance.h"
 
@@ -554,22 +555,12 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   }
   // The a-trous passes: direct light (with indirect light when both share the passes), then
   // indirect light alone.
-  denoise::AtrousPass base;
-  base.surface = b.surface.view();
-  base.depth_slope = b.depth_slope.data();
-  base.direct = {light_d, b.variance[0], {}, nullptr};
-  base.indirect = {light_i, b.variance[1], {}, nullptr};
-  base.width = w;
-  base.height = h;
-  base.sigma_luminance = s.sigma_luminance;
-  base.sigma_luminance_indirect = s.sigma_luminance_indirect;
-  base.sigma_normal = s.sigma_normal;
-  base.sigma_depth = s.sigma_depth;
-  const int indirect_iterations =
-      spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, h) : 0;
-  const bool half = indirect_iterations > 0 && s.indirect_resolution == 2;
-  // At full resolution with as many passes, both lights share each pass's geometry.
-  const bool both = indirect_iterations > 0 && !half && indirect_iterations == s.atrous_iterations;
+  const denoise::AtrousPass base =
+      denoise::atrous_base(s, b.surface.view(), b.depth_slope.data(), light_d, b.variance[0],
+                           light_i, b.variance[1], w, h);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h);
+  const int indirect_iterations = plan.indirect_iterations;
+  const bool half = plan.half, both = plan.both;
   if (spatial) {
     ScopedStage stage(frame.times, "denoise/atrous");
     auto outputs = [&](int k, denoise::AtrousPass& pass) {
