@@ -209,13 +209,10 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   length_.resize(n);
 
   const DenoiseSettings& s = settings;
-  const bool rest = state == HistoryState::kRest && s.temporal;
-  const float cap_direct =
-      rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
-  const float accumulated_cap =
-      state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
-  const float cap_indirect =
-      frame.indirect_accumulated ? std::min(cap_direct, accumulated_cap) : cap_direct;
+  const bool rest = denoise::denoise_at_rest(s, state);
+  const denoise::TemporalSettings temporal_settings =
+      denoise::temporal_settings(s, state, frame.indirect_accumulated, resized, rest_valid_);
+  const float cap_indirect = temporal_settings.cap_indirect;
 
   row_short_.fill_zero();
   {
@@ -238,17 +235,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.height = h;
     temporal.prev_width = prev_width;
     temporal.prev_height = prev_height;
-    denoise::TemporalSettings& ts = temporal.s;
-    ts.history = s.temporal && state != HistoryState::kReset;
-    ts.reproject =
-        resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
-    ts.clip = state == HistoryState::kWorldChanged;
-    ts.rest_continues = rest && rest_valid_ && !resized;
-    ts.cap_direct = cap_direct;
-    ts.cap_indirect = cap_indirect;
-    ts.clip_gamma = s.clip_gamma;
-    ts.depth_tolerance = s.depth_tolerance;
-    ts.normal_tolerance = s.normal_tolerance;
+    temporal.s = temporal_settings;
     const bool update_rest = rest || state == HistoryState::kReset;
     temporal.rest = {rest_factor_.view(), rest_emission_.view()};
     uint32_t* row_short = row_short_.data();

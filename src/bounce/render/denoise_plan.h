@@ -3,10 +3,45 @@
 // One copy, so the two backends cannot drift apart.
 #pragma once
 
+#include <algorithm>
+#include <limits>
+
 #include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoiser.h"
 
 namespace bounce::denoise {
+
+// Whether this frame is at rest for the denoiser: history averages without a cap.
+inline bool denoise_at_rest(const DenoiseSettings& s, HistoryState state) {
+  return state == HistoryState::kRest && s.temporal;
+}
+
+// The temporal pass's settings for a frame: how history is reused after `state`, given whether
+// the image size changed and whether the rest averages are still valid.
+inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState state,
+                                          bool indirect_accumulated, bool resized,
+                                          bool rest_valid) {
+  const bool rest = denoise_at_rest(s, state);
+  TemporalSettings ts;
+  ts.cap_direct = rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
+  // Indirect light a technique accumulates itself already holds its history; the denoiser adds a
+  // short one only while the camera moves (the technique then re-gathers kept photons from a new
+  // view, at a lower resolution). At rest and after a world change (where the technique
+  // restarts) a longer one would only lag behind the technique's own average.
+  const float accumulated_cap =
+      state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
+  ts.cap_indirect = indirect_accumulated ? std::min(ts.cap_direct, accumulated_cap) : ts.cap_direct;
+  ts.history = s.temporal && state != HistoryState::kReset;
+  ts.reproject =
+      resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
+  ts.clip = state == HistoryState::kWorldChanged;
+  ts.rest_continues = rest && rest_valid && !resized;
+  ts.clip_gamma = s.clip_gamma;
+  ts.depth_tolerance = s.depth_tolerance;
+  ts.normal_tolerance = s.normal_tolerance;
+  return ts;
+}
 
 struct AtrousPlan {
   int indirect_iterations = 0;  // passes over indirect light (0: none)

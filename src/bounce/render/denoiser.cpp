@@ -458,17 +458,10 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   std::swap(history_length_, b.prev_length);
 
   const DenoiseSettings& s = settings_;
-  const bool rest = state == HistoryState::kRest && s.temporal;
-  const float cap_direct =
-      rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
-  // Indirect light a technique accumulates itself already holds its history; the denoiser adds a
-  // short one only while the camera moves (the technique then re-gathers kept photons from a new
-  // view, at a lower resolution). At rest and after a world change (where the technique
-  // restarts) a longer one would only lag behind the technique's own average.
-  const float accumulated_cap =
-      state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
-  const float cap_indirect =
-      frame.indirect_accumulated ? std::min(cap_direct, accumulated_cap) : cap_direct;
+  const bool rest = denoise::denoise_at_rest(s, state);
+  const denoise::TemporalSettings temporal_settings =
+      denoise::temporal_settings(s, state, frame.indirect_accumulated, resized, b.rest_valid);
+  const float cap_indirect = temporal_settings.cap_indirect;
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;
@@ -490,17 +483,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.height = h;
     temporal.prev_width = prev_width;
     temporal.prev_height = prev_height;
-    denoise::TemporalSettings& ts = temporal.s;
-    ts.history = s.temporal && state != HistoryState::kReset;
-    ts.reproject =
-        resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
-    ts.clip = state == HistoryState::kWorldChanged;
-    ts.rest_continues = rest && b.rest_valid && !resized;
-    ts.cap_direct = cap_direct;
-    ts.cap_indirect = cap_indirect;
-    ts.clip_gamma = s.clip_gamma;
-    ts.depth_tolerance = s.depth_tolerance;
-    ts.normal_tolerance = s.normal_tolerance;
+    temporal.s = temporal_settings;
     // Rest averages start at a reset (the first frame of a still) and continue at rest.
     const bool update_rest = rest || state == HistoryState::kReset;
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
