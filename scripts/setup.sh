@@ -15,6 +15,8 @@ packages=(
   # Quake 3 levels for tests and benchmarks: the maps, their textures, and openarena-data for
   # the shader scripts (pak0.pk3) that make most of their lights.
   openarena-081-maps openarena-081-textures openarena-data
+  # Real glTF and OBJ files, many deliberately broken, for the loaders' corpus test.
+  assimp-testmodels
 )
 
 missing=()

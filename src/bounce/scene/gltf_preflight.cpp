@@ -74,6 +74,18 @@ bool is_number_array_key(const std::string& key) {
   return kKeys.count(key) > 0;
 }
 
+// Keys whose value glTF 2.0 defines as an array (of objects, or of indices for "children",
+// "joints" and a scene's "nodes"); tinygltf skips any other shape without a word.
+bool is_array_key(const std::string& key) {
+  static const std::set<std::string> kKeys = {
+      "accessors",      "animations", "bufferViews", "buffers",
+      "cameras",        "channels",   "children",    "extensionsRequired",
+      "extensionsUsed", "images",     "joints",      "materials",
+      "meshes",         "nodes",      "primitives",  "samplers",
+      "scenes",         "skins",      "targets",     "textures"};
+  return kKeys.count(key) > 0;
+}
+
 bool all_numbers(const json& a) {
   if (!a.is_array()) return false;
   for (const json& v : a)
@@ -112,6 +124,8 @@ void check_types(const json& node, const std::string& pointer, const std::string
       expected = "a number";
     else if (is_number_array_key(key) && !all_numbers(value))
       expected = "an array of numbers";
+    else if (is_array_key(key) && !value.is_array())
+      expected = "an array";
     else if (key == "attributes" && value.is_object())
       for (const auto& [name, a] : value.items())
         if (!(a.is_number_integer() && a.get<int64_t>() >= 0) && ++warnings <= kMaxWarnings)
