@@ -94,9 +94,11 @@ void run_bench(BenchOptions o) {
   Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   if (o.animate && scene.animation.empty())
     fail("{}: --animate: the scene has no animation", scene.source);
-  check_memory(scene, o.frame.width, o.frame.height);
+  auto technique = make_configured_technique(o.frame);
+  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
+               technique->memory_estimate(scene));
   auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
+  Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(o.frame, renderer);
   FrameSettings settings = o.frame.settings();
   settings.accumulate = o.accumulate;

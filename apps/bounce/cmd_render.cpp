@@ -35,11 +35,13 @@ void run_render(const RenderOptions& o) {
   Stopwatch load_watch;
   const Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   const double load_ms = load_watch.elapsed_ms();
-  check_memory(scene, o.frame.width, o.frame.height);
-  auto tracer = make_embree_tracer(scene);
   FrameOptions frame_options = o.frame;
   frame_options.still = true;  // a still affords more work per pass than a real-time frame
-  Renderer renderer(scene, *tracer, make_configured_technique(frame_options));
+  auto technique = make_configured_technique(frame_options);
+  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
+               technique->memory_estimate(scene));
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(frame_options, renderer);
   FrameSettings settings = o.frame.settings();
   // The passes are frames at rest: the pipeline averages them (techniques that accumulate

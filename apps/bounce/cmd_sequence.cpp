@@ -72,11 +72,13 @@ void run_sequence(const SequenceOptions& o) {
       fail("--from {:g} s is past the end of the animation ({:g} s); give --to", from, to);
   }
   const FrameRange range = make_frame_range(from, to, o.fps, o.every);
-  check_memory(scene, o.frame.width, o.frame.height);
+  auto technique = make_configured_technique(o.frame);
+  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
+               technique->memory_estimate(scene));
   create_directory(pattern);
 
   auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_configured_technique(o.frame));
+  Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(o.frame, renderer);
   StageStatistics stats;
   nlohmann::json frames = nlohmann::json::array();

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 
 #include "bounce/core/error.h"
@@ -86,12 +87,23 @@ void check_output_image(const std::string& path) {
   ::unlink(probe.c_str());
 }
 
-uint64_t estimate_render_bytes(const Scene& scene, int width, int height,
-                               uint64_t bytes_per_pixel) {
-  uint64_t bytes = uint64_t(width) * uint64_t(height) * bytes_per_pixel;
-  bytes += uint64_t(scene.triangle_count()) * kBytesPerTriangle;
-  for (const Texture& t : scene.textures) bytes += t.texels.size() * sizeof(t.texels[0]);
-  return bytes;
+uint64_t MemoryEstimate::total() const {
+  const uint64_t parts[] = {pixels, geometry, textures, technique};
+  uint64_t sum = 0;
+  for (uint64_t part : parts)  // saturating: a technique's estimate may be UINT64_MAX
+    sum = part > std::numeric_limits<uint64_t>::max() - sum ? std::numeric_limits<uint64_t>::max()
+                                                            : sum + part;
+  return sum;
+}
+
+MemoryEstimate estimate_render_bytes(const Scene& scene, int width, int height,
+                                     uint64_t bytes_per_pixel, uint64_t technique_bytes) {
+  MemoryEstimate e;
+  e.pixels = uint64_t(width) * uint64_t(height) * bytes_per_pixel;
+  e.geometry = uint64_t(scene.triangle_count()) * kBytesPerTriangle;
+  for (const Texture& t : scene.textures) e.textures += t.texels.size() * sizeof(t.texels[0]);
+  e.technique = technique_bytes;
+  return e;
 }
 
 uint64_t memory_limit_bytes() {
@@ -105,15 +117,20 @@ uint64_t memory_limit_bytes() {
   return uint64_t(gib * 1024.0 * 1024.0 * 1024.0);
 }
 
-void check_memory(const Scene& scene, int width, int height, uint64_t bytes_per_pixel) {
-  const uint64_t need = estimate_render_bytes(scene, width, height, bytes_per_pixel);
+void check_memory(const Scene& scene, int width, int height, uint64_t bytes_per_pixel,
+                  uint64_t technique_bytes) {
+  const MemoryEstimate e =
+      estimate_render_bytes(scene, width, height, bytes_per_pixel, technique_bytes);
   const uint64_t cap = memory_limit_bytes();
   const double gib = 1024.0 * 1024.0 * 1024.0;
-  if (need > cap)
+  if (e.total() > cap)
     fail(
-        "rendering {} at {}x{} needs about {:.1f} GiB, more than the cap of {:.1f} GiB; use a "
-        "smaller image, or raise the cap with BOUNCE_MEMORY_LIMIT_GB=N",
-        scene.source, width, height, double(need) / gib, double(cap) / gib);
+        "rendering {} at {}x{} needs about {:.1f} GiB (image {:.1f}, geometry {:.1f}, textures "
+        "{:.1f}, photons and technique data {:.1f}), more than the cap of {:.1f} GiB; use a "
+        "smaller image or fewer photons, or raise the cap with BOUNCE_MEMORY_LIMIT_GB=N",
+        scene.source, width, height, double(e.total()) / gib, double(e.pixels) / gib,
+        double(e.geometry) / gib, double(e.textures) / gib, double(e.technique) / gib,
+        double(cap) / gib);
 }
 
 }  // namespace bounce::app

@@ -37,14 +37,20 @@ inline constexpr uint64_t kFrameBytesPerPixel = 480;
 inline constexpr uint64_t kReferenceBytesPerPixel = 48;
 
 // The memory a render of `scene` at width x height is expected to need, in bytes: the pixels,
-// geometry and the acceleration structure per triangle, and textures.
-uint64_t estimate_render_bytes(const Scene& scene, int width, int height, uint64_t bytes_per_pixel);
+// geometry and the acceleration structure per triangle, textures, and what the technique keeps
+// beyond its per-pixel buffers (Technique::memory_estimate: photons, refined meshes).
+struct MemoryEstimate {
+  uint64_t pixels = 0, geometry = 0, textures = 0, technique = 0;
+  uint64_t total() const;
+};
+MemoryEstimate estimate_render_bytes(const Scene& scene, int width, int height,
+                                     uint64_t bytes_per_pixel, uint64_t technique_bytes = 0);
 // The cap on that estimate: BOUNCE_MEMORY_LIMIT_GB if set (a positive number of GiB), else
 // kDefaultMemoryLimitGiB (throws Error for a malformed value).
 uint64_t memory_limit_bytes();
 inline constexpr double kDefaultMemoryLimitGiB = 8.0;
-// Throws Error naming the estimate and the cap when the estimate exceeds the cap.
+// Throws Error naming the estimate, its parts and the cap when the estimate exceeds the cap.
 void check_memory(const Scene& scene, int width, int height,
-                  uint64_t bytes_per_pixel = kFrameBytesPerPixel);
+                  uint64_t bytes_per_pixel = kFrameBytesPerPixel, uint64_t technique_bytes = 0);
 
 }  // namespace bounce::app

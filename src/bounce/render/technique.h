@@ -97,6 +97,11 @@ class Technique {
   // applies them unless the user sets the parameter).
   virtual std::vector<std::string> still_defaults() const { return {}; }
 
+  // Bytes the technique will keep beyond the per-pixel buffers (photons held across frames,
+  // refined meshes) for `scene` with its current parameters, estimated before any frame so that a
+  // setting that cannot fit is refused at once (render/memory_estimate.h).
+  virtual uint64_t memory_estimate(const Scene& scene) const { return 0; }
+
   virtual void prepare(const PrepareContext& context) {}
   // Writes indirect radiance for every G-buffer pixel into `out` (already sized and zeroed).
   virtual void indirect(const FrameContext& context, Image& out) = 0;

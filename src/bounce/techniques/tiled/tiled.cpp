@@ -9,6 +9,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/parallel_primitives.h"
+#include "bounce/render/memory_estimate.h"
 #include "bounce/render/photon_clearance.h"
 #include "bounce/render/photon_gather.h"
 
@@ -68,6 +69,14 @@ std::vector<TechniqueOption> TiledPhotonMapping::options() const {
 
 std::vector<std::string> TiledPhotonMapping::still_defaults() const {
   return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
+}
+
+uint64_t TiledPhotonMapping::memory_estimate(const Scene& scene) const {
+  const TiledSettings& s = settings_;
+  const double passes = double(s.photons) * double(s.history_passes);
+  // The ring of passes, and their union gathered again after a camera move.
+  return saturating_bytes(passes * expected_photon_deposits(scene, s.bounces) *
+                          double(kPhotonBufferBytes) * 2.0);
 }
 
 const PhotonBuffer& TiledPhotonMapping::photons() const {

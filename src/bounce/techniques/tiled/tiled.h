@@ -42,6 +42,8 @@ class TiledPhotonMapping final : public Technique {
   IndirectHistory indirect_history() const override { return IndirectHistory::kAccumulated; }
   std::vector<TechniqueOption> options() const override;
   std::vector<std::string> still_defaults() const override;
+  // The photon passes held (history_passes of them) and their union after a camera move.
+  uint64_t memory_estimate(const Scene& scene) const override;
   // Traces this frame's photons and their clearances (world space, before the G-buffer); keeps
   // the passes before it while only the camera moves, drops them on any other change.
   void prepare(const PrepareContext& context) override;

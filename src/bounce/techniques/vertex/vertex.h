@@ -52,6 +52,8 @@ class VertexPhotonMapping final : public Technique {
   std::string name() const override { return "vertex"; }
   std::vector<TechniqueOption> options() const override;
   std::vector<std::string> still_defaults() const override;
+  // The photon ring, the map gathered from it and its kd-tree, and the refined mesh.
+  uint64_t memory_estimate(const Scene& scene) const override;
   // Refines the mesh (first frame, new refinement) or moves its keys (moved meshes); traces this
   // frame's photons into the ring's slot and builds the kd-tree over the ring.
   void prepare(const PrepareContext& context) override;
