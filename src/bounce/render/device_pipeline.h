@@ -19,7 +19,7 @@ namespace bounce {
 
 struct Frame;
 struct FrameSettings;
-class LightPicker;
+struct LightPicker;
 class Denoiser;
 enum class HistoryState;
 
