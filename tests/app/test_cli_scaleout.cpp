@@ -116,6 +116,26 @@ TEST(CliScaleOut, SequenceRangesWithWarmupMatchOneRun) {
   for (int k = 4; k <= 6; ++k) EXPECT_EQ(frame("range", k).pixels(), frame("one", k).pixels()) << k;
   EXPECT_FALSE(fs::exists(dir / "range" / "f_3.exr"));            // warm-up frames are not written
   EXPECT_NE(frame("one", 4).pixels(), frame("one", 5).pixels());  // the frames do differ
+
+  // The denoiser's history is a moving average that never ends: a range differs from one run by
+  // what the frames before its warm-up left there, less the longer the warm-up (measured at
+  // 32x32: linear MSE 3e-4 without warm-up, 7e-5 after 2 frames, 1.4e-6 after 6).
+  const auto mse = [](const Image& a, const Image& b) {
+    double s = 0.0;
+    for (size_t i = 0; i < a.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(a.pixels()[i][c]) - double(b.pixels()[i][c]);
+        s += d * d;
+      }
+    return s / double(3 * a.pixel_count());
+  };
+  sequence("denoised", "-t direct --from 0 --to 0.7");
+  sequence("cold", "-t direct --from 0.7 --to 0.7 --global-numbers");
+  sequence("warm", "-t direct --from 0.7 --to 0.7 --warmup 6 --global-numbers");
+  const double cold = mse(frame("cold", 7), frame("denoised", 7));
+  const double warm = mse(frame("warm", 7), frame("denoised", 7));
+  EXPECT_GT(cold, 0.0);
+  EXPECT_LT(warm, 0.1 * cold);
 }
 
 }  // namespace
