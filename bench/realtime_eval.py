@@ -4,7 +4,7 @@
 Measurements (each denoised, as the CLI runs by default, and raw with --no-denoise):
   references  `bounce reference scenes/cornell-walk.bounce.json --at T` for the poses compared
   at rest     `bounce sequence cornell`: the first displayed frame and frame 30 (1 s) against the
-              t = 0 reference (the plain Cornell box view); MSE8, MSSIM, mean frame ms
+              t = 0 reference (the plain Cornell box view); MSE8, MSSIM, FLIP, mean frame ms
   in motion   `bounce sequence scenes/cornell-walk.bounce.json`: frames 30 and 60 (1 s, 2 s into
               the walk) against the references of those poses
   cost        `bounce bench cornell`, every frame without history and with --accumulate: the
@@ -92,7 +92,8 @@ class Bounce:
 
     def compare(self, ref, test, heatmap):
         out = run([self.bin, "compare", ref, test, "--json", "--heatmap", heatmap])
-        return json.loads(out)["srgb8"]
+        j = json.loads(out)
+        return {**j["srgb8"], "flip": j["flip"]["mean"]}
 
 
 # ---------------------------------------------------------------- measurements
@@ -145,7 +146,7 @@ def run_sequence(b, cfg, out, what, scene, to, frames, ref_at):
             ref = reference_path(out, cfg, ref_at(k))
             m = b.compare(ref, img, d / f"f_{k:04d}_error.png")
             entry["frames"][str(k)] = {"time": k / cfg.fps, "reference_at": ref_at(k),
-                                       "mse8": m["mse"], "mssim": m["mssim"]}
+                                       "mse8": m["mse"], "mssim": m["mssim"], "flip": m["flip"]}
         result[mode] = entry
     return result
 
@@ -215,6 +216,7 @@ def table_rows(cfg, rest, motion, cost, light):
         rows.append((f"at rest, {what} ({t:g} s): MSSIM", d["mssim"], r["mssim"], mssim_t, "{:.4f}"))
         rows.append((f"at rest, {what} ({t:g} s): MSE8", d["mse8"], r["mse8"],
                      None if k == first else at_most(10), "{:.1f}"))
+        rows.append((f"at rest, {what} ({t:g} s): FLIP", d["flip"], r["flip"], None, "{:.4f}"))
     rows.append(("at rest, sequence mean frame ms", rest["denoised"]["mean_frame_ms"],
                  rest["raw"]["mean_frame_ms"], None, "{:.1f}"))
     for k in cfg.motion_frames:
@@ -224,6 +226,7 @@ def table_rows(cfg, rest, motion, cost, light):
                      at_least(0.95), "{:.4f}"))
         rows.append((f"in motion, frame {k} ({t:g} s): MSE8", d["mse8"], r["mse8"],
                      at_most(30), "{:.1f}"))
+        rows.append((f"in motion, frame {k} ({t:g} s): FLIP", d["flip"], r["flip"], None, "{:.4f}"))
     rows.append(("in motion, sequence mean frame ms", motion["denoised"]["mean_frame_ms"],
                  motion["raw"]["mean_frame_ms"], None, "{:.1f}"))
     for acc, what in (("every_frame", "every frame, no history"), ("accumulate", "at rest, --accumulate")):
@@ -256,6 +259,8 @@ def absurd(results):
                 bad.append(f"{path} = {v} is negative")
             elif path.endswith("mssim") and not 0 < v <= 1:
                 bad.append(f"{path} = {v} is outside (0, 1]")
+            elif path.endswith("flip") and not 0 <= v <= 1:
+                bad.append(f"{path} = {v} is outside [0, 1]")
             elif path.endswith("frame_ms") and v == 0:
                 bad.append(f"{path} is zero")
 

@@ -10,6 +10,8 @@ packages=(
   libopenexr-dev libcli11-dev libfmt-dev libzip-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
+  # GNU parallel: the scale-out test runs a split reference through it (docs/scale-out.md).
+  parallel
   libglfw3-dev libimgui-dev libepoxy-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   # Quake 3 levels for tests and benchmarks: the maps, their textures, and openarena-data for

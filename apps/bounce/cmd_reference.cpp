@@ -14,6 +14,7 @@
 #include "bounce/core/timer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/reference.h"
+#include "bounce/techniques/path/reference_slices.h"
 #include "input_checks.h"
 #include "options.h"
 #include "report.h"
@@ -27,6 +28,7 @@ struct ReferenceOptions {
   int width = 256;
   int height = 256;
   int spp = 1024;
+  int sample_offset = 0;  // first sample of a slice (bounce merge combines slices)
   double time_s = 0.0;
   int max_bounces = -1;
   int rr_start = 3;
@@ -54,6 +56,7 @@ void run_reference(const ReferenceOptions& o) {
   settings.width = o.width;
   settings.height = o.height;
   settings.spp = o.spp;
+  settings.first_sample = o.sample_offset;
   settings.time_limit_s = o.time_s;
   settings.seed = o.seed;
   settings.path.max_bounces = o.max_bounces;
@@ -64,8 +67,13 @@ void run_reference(const ReferenceOptions& o) {
   // A checkpoint resumes the samples of an earlier run with the same key, and is saved every
   // checkpoint_every_s seconds and when the run is interrupted.
   ReferenceState state;
-  const ReferenceCheckpointKey key{
-      fmt::format("{} at {}", o.scene, o.at), o.width, o.height, o.seed, o.max_bounces, o.rr_start};
+  const ReferenceCheckpointKey key{fmt::format("{} at {}", o.scene, o.at),
+                                   o.width,
+                                   o.height,
+                                   o.seed,
+                                   o.max_bounces,
+                                   o.rr_start,
+                                   o.sample_offset};
   if (!o.checkpoint.empty() && std::filesystem::exists(o.checkpoint)) {
     state = load_reference_checkpoint(o.checkpoint, key);
     fmt::print("resuming {} from {} spp\n", o.checkpoint, state.spp);
@@ -99,12 +107,20 @@ void run_reference(const ReferenceOptions& o) {
       render_reference(scene, *tracer, scene.camera, settings, progress, &state);
   line.finish();
   throw_if_interrupted();
-  save_image(out, r.image, o.exposure_ev);
+  // An EXR records what it holds (scene, settings, sample range), so bounce merge can combine
+  // slices and refuse ones that do not belong together.
+  if (lower_case_extension(out) == ".exr")
+    save_exr(out, r.image, reference_attributes(key, r.spp));
+  else
+    save_image(out, r.image, o.exposure_ev);
   if (!o.checkpoint.empty()) save_checkpoint();  // a later run with more --spp goes on from here
   const std::string bounces =
       o.max_bounces < 0 ? std::string("unlimited") : fmt::format("{}", o.max_bounces);
   fmt::print("reference {} {}x{}: {} spp, max bounces {}, seed {}\n", scene.source, o.width,
              o.height, r.spp, bounces, o.seed);
+  if (o.sample_offset > 0)
+    fmt::print("samples {} .. {} of each pixel's sequence\n", o.sample_offset,
+               int64_t(o.sample_offset) + r.spp - 1);
   fmt::print("time {:.1f} s, {:.1f} M rays ({:.2f} M rays/s)\n", r.seconds, r.rays * 1e-6,
              r.seconds > 0.0 ? r.rays * 1e-6 / r.seconds : 0.0);
   if (r.nonfinite > 0) warn(fmt::format("{} non-finite samples were dropped", r.nonfinite));
@@ -129,6 +145,11 @@ void add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--spp", o->spp, "Samples (paths) per pixel")
       ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  cmd->add_option("--sample-offset", o->sample_offset,
+                  "Index of the first sample: the run takes samples K .. K+spp-1 of the sequence "
+                  "a single run takes, a slice that bounce merge combines with the others")
+      ->check(CLI::Range(0, kMaxReferenceSample - (1 << 24)))
       ->capture_default_str();
   cmd->add_option("--time", o->time_s,
                   "Stop after this many seconds even if --spp is not reached (0: no limit)")

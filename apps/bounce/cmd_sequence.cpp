@@ -31,8 +31,10 @@ struct SequenceOptions {
   bool from_given = false;      // else --at (or 0)
   bool to_given = false;        // else the animation's duration
   int every = 1;
-  std::string out;   // frame pattern; empty: default_pattern()
-  std::string json;  // --json: per-frame record
+  int64_t warmup = 0;           // frames rendered before --from, not written
+  bool global_numbers = false;  // file numbers count from 0 s, not from --from
+  std::string out;              // frame pattern; empty: default_pattern()
+  std::string json;             // --json: per-frame record
 };
 
 std::string default_pattern(const std::string& scene) {
@@ -71,7 +73,12 @@ void run_sequence(const SequenceOptions& o) {
     if (to < from)
       fail("--from {:g} s is past the end of the animation ({:g} s); give --to", from, to);
   }
-  const FrameRange range = make_frame_range(from, to, o.fps, o.every);
+  const FrameRange range = make_frame_range(from, to, o.fps, o.every, o.warmup);
+  if (o.global_numbers && range.origin < 0)
+    fail(
+        "--global-numbers: --from {:g} s is not on the frame grid at {:g} fps (a whole number of "
+        "frames from 0 s)",
+        from, o.fps);
   auto technique = make_configured_technique(o.frame);
   check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
                technique->memory_estimate(scene));
@@ -80,6 +87,9 @@ void run_sequence(const SequenceOptions& o) {
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(o.frame, renderer);
+  // Frame numbers seed the samples: a range that starts part way numbers its frames as a run
+  // from 0 s would, warm-up included.
+  if (range.origin >= 0) renderer.set_frame_index(uint32_t(range.number(-range.warmup)));
   StageStatistics stats;
   nlohmann::json frames = nlohmann::json::array();
   double frame_ms_sum = 0.0;
@@ -90,7 +100,7 @@ void run_sequence(const SequenceOptions& o) {
     // after an earlier one (a short run needs none).
     ProgressLine progress;
     double printed_s = 0.0;
-    for (int64_t k = 0; k < range.count; ++k) {
+    for (int64_t k = -range.warmup; k < range.count; ++k) {
       throw_if_interrupted();  // frames written so far stay; none is written half-way
       const double t = range.time(k);
       if (!scene.animation.empty()) renderer.animate(scene, float(t));
@@ -98,12 +108,14 @@ void run_sequence(const SequenceOptions& o) {
       const bool moving =
           renderer.next_change(camera, realtime_frame_settings(o.frame, true)).any();
       const Frame& frame = renderer.render(camera, realtime_frame_settings(o.frame, moving));
+      if (k < 0) continue;  // warm-up: state only, neither written nor timed
       stats.add(frame.times);
       const double frame_ms = frame.times.total_ms();
       frame_ms_sum += frame_ms;
       nlohmann::json record = {{"index", k}, {"time", t}, {"ms", frame_ms}};
-      if (range.kept(k)) {
-        const std::string name = pattern.name(k);
+      const int64_t number = o.global_numbers ? range.number(k) : k;
+      if (number % range.every == 0) {
+        const std::string name = pattern.name(number);
         save_image(name, frame.color, o.frame.exposure_ev);
         record["file"] = name;
         ++written;
@@ -134,6 +146,7 @@ void run_sequence(const SequenceOptions& o) {
              scene.source, renderer.technique().name(), settings.width, settings.height,
              settings.light_samples, range.from, range.to, range.fps);
   print_stage_table(stats, true);
+  if (range.warmup > 0) fmt::print("{} warm-up frames before {:g} s\n", range.warmup, range.from);
   fmt::print("{} frames rendered, {} written{}: {}\n", range.count, written,
              range.every > 1 ? fmt::format(" (every {})", range.every) : "", pattern.pattern());
   fmt::print("mean frame {:.2f} ms ({:.1f} fps); {:.2f} ms per frame with writing\n", mean_ms,
@@ -148,6 +161,8 @@ void run_sequence(const SequenceOptions& o) {
                       {"to", range.to},
                       {"fps", range.fps},
                       {"every", range.every},
+                      {"warmup", range.warmup},
+                      {"global_numbers", o.global_numbers},
                       {"pattern", pattern.pattern()},
                       {"frames_rendered", range.count},
                       {"frames_written", written},
@@ -177,6 +192,15 @@ void add_sequence_command(CLI::App& app) {
   cmd->add_option("--every", o->every,
                   "Write every Nth frame (k % N == 0); all frames are still rendered")
       ->capture_default_str();
+  cmd->add_option("--warmup", o->warmup,
+                  "Frames rendered before --from and not written, to rebuild the temporal state a "
+                  "run from 0 s would have there (cut to the frames after 0 s)")
+      ->check(CLI::Range(int64_t(0), kMaxSequenceFrames))
+      ->capture_default_str();
+  cmd->add_flag("--global-numbers", o->global_numbers,
+                "Number the files by the frame's index from 0 s (time x fps) instead of from "
+                "--from, and keep --every frames by that number: ranges rendered apart then "
+                "write one sequence of files");
   cmd->add_option("-o,--out", o->out,
                   "Frame files: a pattern with one integer conversion for the frame number k "
                   "(at time from + k/fps), ending in .png (tone-mapped), .exr or .pfm (linear); "

@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include "bounce/scene/scene.h"
@@ -27,6 +29,13 @@ CLI::Validator non_empty_path();
 // .exr, .pfm), its directory exists or can be created, and a file can be created there (throws
 // Error naming the path and the problem).
 void check_output_image(const std::string& path);
+
+// The file name's extension in lower case, with its dot (".exr"); empty when it has none.
+inline std::string lower_case_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
 
 // Bytes per pixel of the frame pipeline (render, bench, sequence): output and accumulation
 // images, G-buffer, the denoiser's history and filter buffers, the techniques' per-pixel buffers.

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   bounce::app::add_compare_command(app);
   bounce::app::add_view_command(app);
   bounce::app::add_sequence_command(app);
+  bounce::app::add_merge_command(app);
   bounce::app::refuse_non_finite_numbers(app);
   try {
     app.parse(argc, argv);

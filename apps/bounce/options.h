@@ -67,5 +67,6 @@ void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_sequence_command(CLI::App& app);
+void add_merge_command(CLI::App& app);
 
 }  // namespace bounce::app

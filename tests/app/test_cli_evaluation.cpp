@@ -82,8 +82,10 @@ TEST(CliEvaluation, CompareReportsMetricsAsTextAndJson) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "MSSIM")) << r.output;
   EXPECT_TRUE(contains(r.output, "inf")) << r.output;  // PSNR of identical images
+  EXPECT_TRUE(contains(r.output, "FLIP           0.000000")) << r.output;
 
-  r = run("compare " + a + " " + b + " --json --heatmap " + heat, false);
+  const std::string flip = (dir / "flip.png").string();
+  r = run("compare " + a + " " + b + " --json --heatmap " + heat + " --flip-map " + flip, false);
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j["width"], 16);
@@ -95,6 +97,16 @@ TEST(CliEvaluation, CompareReportsMetricsAsTextAndJson) {
   EXPECT_EQ(j["heatmap"]["path"], heat);
   const bounce::Image h = bounce::load_image(heat);
   EXPECT_EQ(h.width(), 16);
+  // One pixel of 192 differs, so the mean FLIP is small but not 0; the map is grey and brightest
+  // at that pixel.
+  EXPECT_GT(j["flip"]["mean"].get<double>(), 0.0);
+  EXPECT_LT(j["flip"]["mean"].get<double>(), 0.05);
+  EXPECT_NEAR(j["flip"]["ppd"].get<double>(), 67.02, 0.01);
+  const bounce::Image f = bounce::load_image(flip);
+  ASSERT_EQ(f.width(), 16);
+  EXPECT_EQ(f.at(3, 3).x, f.at(3, 3).y);
+  for (const bounce::vec3& p : f.pixels()) EXPECT_LE(p.x, f.at(3, 3).x);
+  EXPECT_GT(f.at(3, 3).x, 0.0f);
 
   r = run("compare " + a + " " + a + " --json", false);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -111,6 +123,8 @@ TEST(CliEvaluation, CompareRejectsMismatchedAndMissingImages) {
       {"compare " + a + " " + (dir / "missing.exr").string(), "missing.exr"},
       {"compare " + a, "test"},
       {"compare " + a + " " + a + " --heatmap " + (dir / "h.exr").string(), "h.exr"},
+      {"compare " + a + " " + a + " --flip-map " + (dir / "f.exr").string(), "f.exr"},
+      {"compare " + a + " " + a + " --flip-ppd 0", "--flip-ppd"},
   };
   for (const auto& [args, expected] : cases) {
     const Result r = run(args);

@@ -124,6 +124,28 @@ TEST(FrameRange, CountMatchesExactArithmeticOverManyRanges) {
       }
 }
 
+TEST(FrameRange, WarmupAndFrameNumbersFromZero) {
+  // 0.5 s at 10 fps is frame 5 of a run from 0 s; 3 warm-up frames are frames 2, 3 and 4, at
+  // the times that run renders them (k / fps, not from + k / fps).
+  const FrameRange r = make_frame_range(0.5, 1.0, 10.0, 1, 3);
+  EXPECT_EQ(r.origin, 5);
+  EXPECT_EQ(r.warmup, 3);
+  for (int64_t k = -3; k < r.count; ++k) {
+    EXPECT_EQ(r.number(k), 5 + k);
+    EXPECT_EQ(r.time(k), double(5 + k) / 10.0) << k;
+  }
+  // No frames before 0 s: the warm-up is cut to what a run from 0 s has.
+  EXPECT_EQ(make_frame_range(0.2, 1.0, 10.0, 1, 30).warmup, 2);
+  EXPECT_EQ(make_frame_range(0.0, 1.0, 10.0, 1, 30).warmup, 0);
+  // Off the grid: times from `from`, numbers local, the warm-up within 0 s .. from.
+  const FrameRange off = make_frame_range(0.25, 1.0, 10.0, 1, 5);
+  EXPECT_EQ(off.origin, -1);
+  EXPECT_EQ(off.warmup, 2);
+  EXPECT_EQ(off.number(1), 1);
+  EXPECT_DOUBLE_EQ(off.time(-2), 0.05);
+  EXPECT_THROW(make_frame_range(0.0, 1.0, 10.0, 1, -1), Error);
+}
+
 TEST(FrameRange, TimesAndKeptFrames) {
   const FrameRange r = make_frame_range(0.5, 1.0, 10.0, 2);
   ASSERT_EQ(r.count, 6);

@@ -26,6 +26,7 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 // libstb ships the compiled implementation, so only the declarations are included here.
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -326,9 +327,11 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   }
 }
 
-Bytes encode_exr(const std::string& path, const Image& image) {
+Bytes encode_exr(const std::string& path, const Image& image,
+                 const ImageAttributes& attributes = {}) {
   Imf::Header header(image.width(), image.height());
   header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
   for (const char* name : kRgbChannels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
   MemoryOStream stream(path);
   {
@@ -501,6 +504,32 @@ void save_png_rgb8(const std::string& path, int width, int height, const uint8_t
 void save_text_file(const std::string& path, const std::string& text,
                     bool finish_when_interrupted) {
   write_file_atomically(path, Bytes(text.begin(), text.end()), finish_when_interrupted);
+}
+
+void save_exr(const std::string& path, const Image& image, const ImageAttributes& attributes) {
+  if (lower_extension(path) != ".exr") fail("cannot write {}: attributes need an .exr file", path);
+  if (image.empty()) fail("cannot write {}: the image is empty", path);
+  write_file_atomically(path,
+                        encode_or_fail(path, [&] { return encode_exr(path, image, attributes); }));
+}
+
+Image load_exr(const std::string& path, ImageAttributes& attributes) {
+  if (lower_extension(path) != ".exr")
+    fail("cannot read {}: {} (expected .exr)", path, describe_extension(lower_extension(path)));
+  const Bytes bytes = read_file(path);
+  try {
+    MemoryIStream stream(path, bytes);
+    Imf::InputFile file(stream);
+    attributes.clear();
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        attributes[it.name()] = text->value();
+    return read_exr_pixels(path, file);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail("cannot read {}: {}", path, e.what());
+  }
 }
 
 }  // namespace bounce

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "bounce/core/image.h"
@@ -28,5 +29,16 @@ void save_png_rgb8(const std::string& path, int width, int height, const uint8_t
 // finish_when_interrupted (a checkpoint: the very file an interrupt should leave).
 void save_text_file(const std::string& path, const std::string& text,
                     bool finish_when_interrupted = false);
+
+// Named text values stored in an EXR file's header beside the pixels (what made the image: a
+// reference slice's scene, seed and samples, read back by bounce merge).
+using ImageAttributes = std::map<std::string, std::string>;
+
+// Saves linear pixels as .exr (like save_image) with `attributes` as string attributes of the
+// header; throws Error for another extension.
+void save_exr(const std::string& path, const Image& image, const ImageAttributes& attributes);
+
+// Loads an .exr (like load_image) and every string attribute of its header.
+Image load_exr(const std::string& path, ImageAttributes& attributes);
 
 }  // namespace bounce

@@ -83,6 +83,10 @@ class Renderer {
   // Renders the next frame from `camera`; the returned frame stays valid until the next call.
   const Frame& render(const Camera& camera, const FrameSettings& settings);
   uint32_t frame_index() const { return frame_index_; }
+  // Numbers the next frame `index`: its jitter and sample seeds follow the frame number, so a
+  // sequence started part way (bounce sequence --from, on another machine) draws the samples a
+  // run from the start draws for the same frames.
+  void set_frame_index(uint32_t index) { frame_index_ = index; }
   // The temporal reuse and denoising stage (FrameSettings::denoise) and its parameters.
   Denoiser& denoiser() { return denoiser_; }
   const Denoiser& denoiser() const { return denoiser_; }

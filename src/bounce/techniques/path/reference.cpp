@@ -48,6 +48,9 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
     fail("image size {}x{} is not positive", settings.width, settings.height);
   if (settings.spp <= 0) fail("samples per pixel must be positive (got {})", settings.spp);
   if (settings.time_limit_s < 0.0) fail("time limit {} s is negative", settings.time_limit_s);
+  if (settings.first_sample < 0 || settings.first_sample > kMaxReferenceSample - settings.spp)
+    fail("samples {} .. {} are outside the sample sequence (0 .. {})", settings.first_sample,
+         int64_t(settings.first_sample) + settings.spp - 1, kMaxReferenceSample - 1);
 
   const LightPicker lights = LightPicker::build(scene);
   const SceneData data = SceneData::from(scene);
@@ -85,8 +88,8 @@ ReferenceResult render_reference(const Scene& scene, const Tracer& tracer, const
       count = std::min(count, std::max(1, int((limit - elapsed) / (elapsed / taken))));
     parallel_for_tiles(w, h, kTile, [&](int x0, int y0, int x1, int y1) {
       PathCounters counters;
-      render_tile(ps, path, camera_rays, settings.seed, x0, y0, x1, y1, done, count, w, sums.data(),
-                  counters);
+      render_tile(ps, path, camera_rays, settings.seed, x0, y0, x1, y1,
+                  settings.first_sample + done, count, w, sums.data(), counters);
       rays += counters.rays;
       nonfinite += counters.nonfinite;
     });

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,17 @@
 
 namespace bounce {
 
+// Sample indices per pixel stay below this (2^30), so first sample + count fits an int.
+inline constexpr int kMaxReferenceSample = 1 << 30;
+
 struct ReferenceSettings {
   int width = 256;
   int height = 256;
-  int spp = 256;              // samples per pixel to take
+  int spp = 256;  // samples per pixel to take
+  // The index of the first of them in each pixel's sample sequence: a run with first_sample K
+  // takes samples K .. K + spp - 1 of the sequence a run from 0 would take, so runs over
+  // disjoint slices (on different machines) merge into the image of one long run.
+  int first_sample = 0;
   double time_limit_s = 0.0;  // stop earlier once this much time has passed (0: no limit)
   uint32_t seed = 0;
   PathSettings path;  // min_bounces is ignored: a reference counts all light from 0 bounces
@@ -58,8 +66,13 @@ struct ReferenceCheckpointKey {
   int width = 0, height = 0;
   uint32_t seed = 0;
   int max_bounces = -1, rr_start = 3;
+  int first_sample = 0;  // the slice's first sample (ReferenceSettings::first_sample)
   bool operator==(const ReferenceCheckpointKey&) const = default;
 };
+
+// The key as NAME=VALUE text fields (scene, width, height, seed, max_bounces, rr_start,
+// sample_offset): what a checkpoint file and a reference image's EXR header record.
+std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpointKey& key);
 
 // Saves the state atomically (a temporary file renamed over `path`), in a binary file that
 // starts with the key; loads it back, failing with a message naming the file when it is not a

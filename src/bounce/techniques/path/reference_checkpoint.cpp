@@ -19,21 +19,22 @@ namespace {
 
 constexpr const char* kMagic = "bounce reference checkpoint 1";
 
-std::map<std::string, std::string> key_fields(const ReferenceCheckpointKey& k) {
+}  // namespace
+
+std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpointKey& k) {
   return {{"scene", k.scene},
           {"width", std::to_string(k.width)},
           {"height", std::to_string(k.height)},
           {"seed", std::to_string(k.seed)},
           {"max_bounces", std::to_string(k.max_bounces)},
-          {"rr_start", std::to_string(k.rr_start)}};
+          {"rr_start", std::to_string(k.rr_start)},
+          {"sample_offset", std::to_string(k.first_sample)}};
 }
-
-}  // namespace
 
 void save_reference_checkpoint(const std::string& path, const ReferenceCheckpointKey& key,
                                const ReferenceState& state) {
   std::string out = std::string(kMagic) + "\n";
-  for (const auto& [name, value] : key_fields(key)) out += name + "=" + value + "\n";
+  for (const auto& [name, value] : reference_key_fields(key)) out += name + "=" + value + "\n";
   out += "spp=" + std::to_string(state.spp) + "\ndata\n";
   const size_t bytes = state.sums.size() * sizeof(double);
   const size_t header = out.size();
@@ -58,7 +59,7 @@ ReferenceState load_reference_checkpoint(const std::string& path,
     fields[line.substr(0, eq)] = line.substr(eq + 1);
   }
   if (line != "data") fail("{}: damaged reference checkpoint: its header has no end", path);
-  for (const auto& [name, value] : key_fields(key)) {
+  for (const auto& [name, value] : reference_key_fields(key)) {
     const auto found = fields.find(name);
     if (found == fields.end()) fail("{}: the reference checkpoint has no '{}'", path, name);
     if (found->second != value)
