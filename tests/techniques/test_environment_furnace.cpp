@@ -9,10 +9,12 @@
 
 #include "bounce/eval/render_image.h"
 #include "bounce/render/renderer.h"
+#include "bounce/techniques/path/path_tracer.h"
 #include "bounce/techniques/path/reference.h"
 #include "bounce/techniques/tiled/tiled.h"
 #include "render/render_test_util.h"
 #include "scene/environment_test_util.h"
+#include "techniques/path/path_test_util.h"
 
 namespace bounce {
 namespace {
@@ -151,6 +153,55 @@ TEST(EnvironmentMapLight, DirectLightOnAPlaneEqualsTheBruteForceIntegral) {
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(direct[c], expected[c], 0.01f * expected[c]) << "direct, channel " << c;
     EXPECT_NEAR(path[c], expected[c], 0.01f * expected[c]) << "path, channel " << c;
+  }
+}
+
+// The path tracer's three ways to find the map from a surface point (light samples, BSDF rays
+// that escape, both weighted by MIS) agree: on a Lambert point with the brute-force integral,
+// on a glossy one with each other.
+TEST(EnvironmentMapLight, PathStrategiesAgree) {
+  auto map = std::make_shared<const EnvironmentMap>(
+      EnvironmentMap::from_image(scene_test::synthetic_map(8, 4), "synthetic"));
+  const Scene scene = plane_under_map(map, -50.0f);
+  const vec3 lambert = plane_radiance_brute_force(scene);
+  auto tracer = make_embree_tracer(scene);
+  const LightPicker lights = LightPicker::build(scene);
+  const SceneData data = SceneData::from(scene);
+  const PathScene ps = path_scene(data.view(), *tracer, lights);
+  const vec3 wo = glm::normalize(vec3(0.3f, 1.0f, -0.4f));
+  // A point on the plane (whose own face hides the lower hemisphere).
+  SurfaceHit x;
+  x.position = vec3(0.1f, 0.0f, 0.2f);
+  x.normal = x.geometric_normal = vec3(0, 1, 0);
+  x.albedo = vec3(0.5f);
+  SurfaceHit glossy = x;
+  glossy.albedo = vec3(0.2f);
+  glossy.f0 = vec3(0.6f);
+  glossy.roughness = 0.4f;
+  const auto estimate = [&](const SurfaceHit& at, LightStrategy strategy) {
+    PathSettings settings;
+    settings.max_bounces = 0;
+    settings.strategy = strategy;
+    PathCounters counters;
+    path_test::Estimate e;
+    for (int i = 0; i < 100000; ++i) {
+      Pcg32 rng = path_rng(1, uint32_t(i), uint32_t(strategy));
+      e.add(reflected_radiance(ps, settings, at, wo, rng, counters));
+    }
+    return e;
+  };
+  const path_test::Estimate glossy_mis = estimate(glossy, LightStrategy::kMis);
+  for (LightStrategy strategy :
+       {LightStrategy::kMis, LightStrategy::kLightOnly, LightStrategy::kBsdfOnly}) {
+    const path_test::Estimate e = estimate(x, strategy);
+    const path_test::Estimate g = estimate(glossy, strategy);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(e.mean(c), lambert[c], 5.0 * e.standard_error(c) + 2e-3 * lambert[c])
+          << "strategy " << int(strategy) << " channel " << c;
+      const double error = std::hypot(g.standard_error(c), glossy_mis.standard_error(c));
+      EXPECT_NEAR(g.mean(c), glossy_mis.mean(c), 5.0 * error + 2e-3 * glossy_mis.mean(c))
+          << "glossy, strategy " << int(strategy) << " channel " << c;
+    }
   }
 }
 
