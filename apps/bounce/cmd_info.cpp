@@ -36,6 +36,13 @@ void print_light(const Light& l) {
           "{:.4g}, {:.4g})\n",
           l.name, p.x, p.y, p.z, l.radius, l.radiance.x, l.radiance.y, l.radiance.z);
       break;
+    case LightType::kEnvironment:
+      fmt::print(
+          "  environment '{}', radiance ({:.4g}, {:.4g}, {:.4g}) times the map's mean ({:.4g}, "
+          "{:.4g}, {:.4g}), rotated {:.4g} degrees about +y\n",
+          l.name, l.radiance.x, l.radiance.y, l.radiance.z, l.map_mean.x, l.map_mean.y,
+          l.map_mean.z, glm::degrees(l.rotation));
+      break;
   }
 }
 

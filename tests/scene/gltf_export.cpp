@@ -153,6 +153,8 @@ void export_light(tg::Model& model, const Light& l) {
       out.type = "directional";
       value = l.irradiance;
       break;
+    case LightType::kEnvironment:
+      return;  // glTF has no environment light
   }
   const float intensity = max_component(value);
   const vec3 colour = intensity > 0.0f ? value / intensity : vec3(1.0f);

@@ -202,6 +202,48 @@ screenshot {shot('path')}
             if d < 0.005:
                 fail(f"{a} and {b} are nearly identical (mean difference {d:.4f})")
 
+        # An environment light: turning its map (bright on one side) about +y and raising its
+        # strength from the script change the view; the unlit cube alone gets the default sky.
+        with open(os.path.join(out, "cube.obj"), "w") as f:
+            f.write("v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
+                    "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\n"
+                    "f 1 5 8 4\nf 2 3 7 6\n")
+        # A flat Radiance file, 4 x 2 texels: bright on the map's left half, dim on its right.
+        with open(os.path.join(out, "sky.hdr"), "wb") as f:
+            f.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n")
+            for _ in range(2):
+                f.write(bytes([128, 128, 128, 131]) * 2 + bytes([128, 128, 128, 127]) * 2)
+        env_scene = os.path.join(out, "sky.bounce.json")
+        with open(env_scene, "w") as f:
+            f.write('{"models": [{"file": "cube.obj"}], "lights": [{"type": "environment", '
+                    '"map": "sky.hdr", "intensity": 0.5}], '
+                    '"camera": {"position": [0, 2, -5], "look_at": [0, 0, 0]}}')
+        env_script = os.path.join(out, "environment.txt")
+        with open(env_script, "w") as f:
+            f.write(f"""ui off
+wait 2
+screenshot {shot('sky_a')}
+light 0 rotation 180
+wait 2
+screenshot {shot('sky_turned')}
+light 0 color 1 1 1
+wait 2
+screenshot {shot('sky_bright')}
+""")
+        run = subprocess.run(
+            [args.bounce, "view", env_scene, "--script", env_script, "-W", str(W), "-H", str(H),
+             "--target-ms", "0"], env=env, capture_output=True, text=True, timeout=240)
+        if run.returncode != 0:
+            fail(f"bounce view {env_scene} exited with {run.returncode}: {run.stderr.strip()}")
+        sky = {n: Shot(shot(n)) for n in ("sky_a", "sky_turned", "sky_bright")}
+        for name, image in sky.items():
+            check_not_blank(name, image)
+        d = mean_abs_diff(sky["sky_a"], sky["sky_turned"])
+        if d < 0.005:
+            fail(f"turning the environment changed nothing (mean difference {d:.4f})")
+        if not sky["sky_bright"].mean() > sky["sky_turned"].mean() + 0.005:
+            fail("raising the environment's strength did not brighten the view")
+
         # Speed in motion, quality at rest: with an unreachable frame-time target (1 ms) the
         # internal resolution falls to its floor (1/4) while the camera turns, and returns to
         # the window's size once it stops.

@@ -29,7 +29,9 @@ constexpr Verb kScriptVerbs[] = {
     {"param", 2, 2, "param NAME VALUE       set a parameter of the technique or the denoiser"},
     {"denoise", 1, 1, "denoise on|off         temporal reuse and denoising"},
     {"show", 1, 1, "show VIEW              denoised, raw, history, motion or variance"},
-    {"light", 5, 5, "light I position|color X Y Z   move or recolour light I (scene.lights)"},
+    {"light", 3, 5,
+     "light I position|color X Y Z   move or recolour light I (scene.lights)\n"
+     "  light I rotation DEG          turn environment light I about +y"},
     {"object", 4, 4, "object I X Y Z         move mesh I by (X, Y, Z) metres"},
     {"exposure", 1, 1, "exposure EV"},
     {"play", 1, 1, "play on|off            play the scene's animation"},
@@ -96,8 +98,13 @@ std::vector<ScriptAction> load_script(const std::string& path) {
     if (a.verb == "flashlight" && a.args[0] != "toggle") a.on_off(0);
     if (a.verb == "denoise") a.on_off(0);
     if (a.verb == "show") parse_denoise_view(a.args[0], a.where());
-    if (a.verb == "light" && a.args[1] != "position" && a.args[1] != "color")
-      fail("{}: light: expected 'position' or 'color', found '{}'", a.where(), a.args[1]);
+    if (a.verb == "light" && a.args[1] != "position" && a.args[1] != "color" &&
+        a.args[1] != "rotation")
+      fail("{}: light: expected 'position', 'color' or 'rotation', found '{}'", a.where(),
+           a.args[1]);
+    if (a.verb == "light" && n != (a.args[1] == "rotation" ? 3 : 5))
+      fail("{}: 'light I {}' takes {} number(s)", a.where(), a.args[1],
+           a.args[1] == "rotation" ? 1 : 3);
     actions.push_back(std::move(a));
   }
   return actions;

@@ -114,9 +114,16 @@ void lights_section(ViewSession& session) {
     ImGui::PushID(id.c_str());
     ImGui::Text("%s (%s)", l.name.c_str(), l.type_name());
     bool changed = false;
-    if (l.type != LightType::kDirectional)
+    if (l.type != LightType::kDirectional && l.type != LightType::kEnvironment)
       changed |= ImGui::DragFloat3("position", &l.position.x, step);
     changed |= colour_and_strength(id.c_str(), l.emission());
+    if (l.type == LightType::kEnvironment) {
+      float degrees = glm::degrees(l.rotation);
+      if (ImGui::SliderFloat("rotation (deg)", &degrees, -180.0f, 180.0f, "%.1f")) {
+        l.rotation = glm::radians(degrees);
+        changed = true;
+      }
+    }
     if (changed) session.lights_changed();
     ImGui::PopID();
   }

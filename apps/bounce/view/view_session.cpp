@@ -177,10 +177,18 @@ bool ViewSession::apply(const ScriptAction& a) {
     const int i = a.integer(0);
     if (size_t(i) >= scene_.lights.size())
       fail(
-          "{}: light {} does not exist (the scene has {} point, spot, directional or sphere "
-          "lights)",
+          "{}: light {} does not exist (the scene has {} point, spot, directional, sphere or "
+          "environment lights)",
           a.where(), i, scene_.lights.size());
     Light& l = scene_.lights[size_t(i)];
+    if (a.args[1] == "rotation") {
+      if (l.type != LightType::kEnvironment)
+        fail("{}: light {} is a {} light; only an environment light turns", a.where(), i,
+             l.type_name());
+      l.rotation = glm::radians(a.number(2));
+      lights_changed();
+      return true;
+    }
     const vec3 v = vector_arg(a, 2);
     if (a.args[1] == "position") {
       l.position = v;

@@ -35,6 +35,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/input_file.h"
 #include "bounce/core/interrupt.h"
+#include "bounce/core/rgbe.h"
 
 namespace bounce {
 
@@ -465,12 +466,13 @@ bool is_ldr_extension(const std::string& ext) {
 
 Image load_image(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (!is_ldr_extension(ext) && ext != ".exr" && ext != ".pfm") {
-    fail("cannot read {}: {} (expected .png, .jpg, .jpeg, .tga, .bmp, .exr or .pfm)", path,
+  if (!is_ldr_extension(ext) && ext != ".exr" && ext != ".pfm" && ext != ".hdr") {
+    fail("cannot read {}: {} (expected .png, .jpg, .jpeg, .tga, .bmp, .exr, .hdr or .pfm)", path,
          describe_extension(ext));
   }
   const Bytes bytes = read_file(path);
   if (ext == ".exr") return decode_exr(path, bytes);
+  if (ext == ".hdr") return decode_rgbe(path, bytes.data(), bytes.size());
   if (ext == ".pfm") return decode_pfm(path, bytes);
   return decode_ldr(path, bytes);
 }

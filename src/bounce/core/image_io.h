@@ -13,7 +13,7 @@ namespace bounce {
 
 // Loads an image as linear RGB, choosing the format by the (case-insensitive) extension:
 // .png/.jpg/.jpeg/.tga/.bmp are decoded from sRGB (alpha is dropped), .exr reads the R, G and B
-// channels, .pfm reads colour ("PF") and greyscale ("Pf") files.
+// channels, .hdr reads Radiance RGBE, .pfm reads colour ("PF") and greyscale ("Pf") files.
 Image load_image(const std::string& path);
 
 // Saves an image by extension: .png is scaled by 2^exposure_ev, clamped and sRGB-encoded to 8 bits;

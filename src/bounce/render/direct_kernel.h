@@ -71,6 +71,13 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
   for (uint32_t l = 0; l < scene.light_count; ++l) {
     const LightRecord& light = scene.lights[l];
     ++light_id;
+    if (light.type == LightType::kEnvironment) {
+      // Light sampling alone (by the map's luminance): no BSDF rays here, as for area lights.
+      const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+      for (int k = 0; k < n; ++k)
+        add(sample_environment_light(scene, light, rotate_unit(hammersley(k, n), offset)), inv_n);
+      continue;
+    }
     if (light.type != LightType::kSphere) {
       add(sample_punctual_light(light, p), 1.0f);
       continue;

@@ -26,10 +26,13 @@ BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const 
     g.depth[i] = std::numeric_limits<float>::infinity();
     SurfaceHit none;
     none.normal = none.geometric_normal = vec3(0.0f);
-    // A sphere light in front shows its radiance; it has no surface to shade.
+    // A sphere light in front shows its radiance; it has no surface to shade. Past all
+    // geometry the ray sees the environment (black without one).
     if (hit.sphere_light()) {
       none.emission = scene.lights[hit.light].radiance;
       g.depth[i] = hit.t * glm::dot(ray.direction, forward);
+    } else {
+      none.emission = scene.background(ray.direction);
     }
     g.store(i, none);
     return;

@@ -21,6 +21,12 @@ BOUNCE_HD inline float sphere_light_pdf(const LightRecord& light, vec3 p) {
   return cone.outside ? 1.0f / cone.solid_angle() : 0.0f;
 }
 
+// pdf with which sample_environment_light returns unit direction d (0 without an environment).
+BOUNCE_HD inline float environment_light_pdf(const SceneView& scene, vec3 d) {
+  if (scene.environment < 0) return 0.0f;
+  return environment_pdf(scene.lights[scene.environment], scene.environment_map, d);
+}
+
 // pdf with which sample_area_light(scene, light, p, .) returns the direction towards a point of
 // the light at `distance` from p whose emitting face makes cosine `cos_light` with the direction
 // back to p: the sampler is uniform over the light's area, so this is distance^2 / (cos * area).

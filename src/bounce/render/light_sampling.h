@@ -72,6 +72,20 @@ BOUNCE_HD inline LightSample sample_sphere_light(const LightRecord& light, vec3 
   return s;
 }
 
+// Environment light: a direction drawn by the map's luminance (uniform for a sky colour), from
+// infinitely far away.
+BOUNCE_HD inline LightSample sample_environment_light(const SceneView& scene,
+                                                      const LightRecord& light, vec2 u) {
+  LightSample s;
+  const EnvironmentSample e = sample_environment(light, scene.environment_map, u);
+  if (!(e.pdf > 0.0f)) return s;
+  s.wi = e.direction;
+  s.distance = std::numeric_limits<float>::infinity();
+  s.pdf = e.pdf;
+  s.weight = e.radiance / e.pdf;
+  return s;
+}
+
 // A uniform point on an area light: u.x picks a triangle by area (and is reused inside it, which
 // keeps stratification), then a uniform point on that triangle. Also its front-face normal.
 struct AreaLightPoint {
@@ -159,6 +173,8 @@ BOUNCE_HD inline EntrySample sample_light_entry(const SceneView& scene, uint32_t
     return {sample_area_light(scene, scene.area_lights[entry - light_count], p, u), false};
   const LightRecord& light = scene.lights[entry];
   if (light.type == LightType::kSphere) return {sample_sphere_light(light, p, u), false};
+  if (light.type == LightType::kEnvironment)
+    return {sample_environment_light(scene, light, u), false};
   return {sample_punctual_light(light, p), true};
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <type_traits>
 
 #include "bounce/core/device.h"
@@ -22,25 +23,30 @@ struct EmittedPhoton {
   vec3 flux;  // W carried by the path
 };
 
-// What emission reads besides the scene: the light picker and the disk directional lights emit
-// from.
+// What emission reads besides the scene: the light picker, the disk directional and environment
+// lights emit from, and the environment's map.
 struct PhotonEmitterView {
   LightPickerView picker;     // entries: the scene's lights, then its area lights
-  float scene_radius = 0.0f;  // covers the scene, for directional lights
+  float scene_radius = 0.0f;  // covers the scene, for directional and environment lights
   vec3 scene_centre{0.0f};
+  EnvironmentMapView environment_map;  // empty for a uniform sky or no environment
 };
 static_assert(std::is_trivially_copyable_v<PhotonEmitterView>);
 
 struct PhotonEmitters {
   LightPicker picker;  // entries: Scene::lights, then Scene::area_lights
   vec3 total_power{0.0f};
-  float scene_radius = 0.0f;  // covers the scene, for directional lights
+  float scene_radius = 0.0f;  // covers the scene, for directional and environment lights
   vec3 scene_centre{0.0f};
+  std::shared_ptr<const EnvironmentMap> environment_map;  // null for a uniform sky
 
   static PhotonEmitters from(const Scene& scene);
   bool empty() const { return picker.empty(); }
   // Valid while this object lives and is not rebuilt.
-  PhotonEmitterView view() const { return {picker.view(), scene_radius, scene_centre}; }
+  PhotonEmitterView view() const {
+    return {picker.view(), scene_radius, scene_centre,
+            environment_map ? environment_map->view() : EnvironmentMapView{}};
+  }
 };
 
 // A photon leaving area light `area` at the point u picks, along `local` (a direction about the
@@ -60,8 +66,12 @@ BOUNCE_HD inline EmittedPhoton photon_from_area_light(const SceneView& scene,
 // own frame: the world's for a point light, about the axis for a spot, about the surface normal
 // for a sphere light (a directional light's photons go its way). `u` places the photon: the point
 // on a sphere light, or on the disc across the scene, behind it, that a directional light's
-// photons start from. A spot's flux is weighted by its falloff over the falloff's mean over the
-// outer cone (power / (intensity * cone solid angle)), so the expected flux stays right.
+// photons start from. An environment light's photons take their direction from u (by the map's
+// luminance) and start on the disc of the scene's radius across it, at local's (x, y), a uniform
+// disc point when local is cosine-distributed (Malley's method); their flux is weighted by
+// radiance / pdf over its mean (the power), so the expected flux stays right. A spot's flux is
+// weighted by its falloff over the falloff's mean over the outer cone (power / (intensity * cone
+// solid angle)), so the expected flux stays right.
 BOUNCE_HD inline EmittedPhoton photon_from_light(const LightRecord& light,
                                                  const PhotonEmitterView& emitters, vec2 u,
                                                  vec3 local, vec3 flux) {
@@ -95,6 +105,22 @@ BOUNCE_HD inline EmittedPhoton photon_from_light(const LightRecord& light,
       const vec3 n = sample_uniform_sphere(u);
       p.origin = offset_origin(light.position + n * light.radius, n);
       p.direction = Basis::from_normal(n).to_world(local);
+      break;
+    }
+    case LightType::kEnvironment: {
+      const EnvironmentSample e = sample_environment(light, emitters.environment_map, u);
+      const float r = emitters.scene_radius;
+      p.direction = -e.direction;
+      p.origin = emitters.scene_centre + e.direction * (2.0f * r);
+      if (!(e.pdf > 0.0f)) {
+        p.direction = vec3(0.0f, -1.0f, 0.0f);
+        p.flux = vec3(0.0f);
+        break;
+      }
+      const Basis basis = Basis::from_normal(p.direction);
+      p.origin += (basis.t * local.x + basis.b * local.y) * r;
+      const vec3 mean = e.pdf * (4.0f * kPi) * light.radiance * light.map_mean;
+      for (int c = 0; c < 3; ++c) p.flux[c] *= mean[c] > 0.0f ? e.radiance[c] / mean[c] : 0.0f;
       break;
     }
   }

@@ -142,6 +142,13 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   last_rays_ = rays;
   f.frames_averaged = rest_frames_;
   if (device_) {
+    // The device scene carries no environment map and its kernels no environment light yet:
+    // refuse rather than render such a scene without its light.
+    if (scene_data_.view().environment >= 0)
+      fail(
+          "{}: the scene has an environment light, which --device cuda does not render yet "
+          "(render it on the CPU, or give the scene other lights)",
+          scene_.source);
     device_->render(
         DeviceFrameInput{scene_, scene_data_, lights_, *technique_, settings, change, rays,
                          previous, subpixel, rest, history, denoiser_, frame_index_},

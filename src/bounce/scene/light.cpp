@@ -9,6 +9,7 @@ vec3& Light::emission() {
     case LightType::kDirectional:
       return irradiance;
     case LightType::kSphere:
+    case LightType::kEnvironment:
       return radiance;
     default:
       return intensity;
@@ -51,6 +52,14 @@ Light Light::sphere(vec3 centre, float radius, vec3 radiance) {
   return l;
 }
 
+Light Light::environment(vec3 radiance, float rotation_deg) {
+  Light l;
+  l.type = LightType::kEnvironment;
+  l.radiance = radiance;
+  l.rotation = glm::radians(rotation_deg);
+  return l;
+}
+
 const char* Light::type_name() const {
   switch (type) {
     case LightType::kPoint:
@@ -61,6 +70,8 @@ const char* Light::type_name() const {
       return "directional";
     case LightType::kSphere:
       return "sphere";
+    case LightType::kEnvironment:
+      return "environment";
   }
   return "?";
 }

@@ -8,7 +8,7 @@
 
 namespace bounce {
 
-enum class LightType { kPoint, kSpot, kDirectional, kSphere };
+enum class LightType { kPoint, kSpot, kDirectional, kSphere, kEnvironment };
 
 // Everything a light is except its name: plain data that kernels copy and read (SceneView).
 struct LightRecord {
@@ -17,7 +17,10 @@ struct LightRecord {
   vec3 direction{0, -1, 0};  // spot: the axis it shines along; directional: travel direction
   vec3 intensity{0.0f};      // point, spot: radiant intensity, W/sr
   vec3 irradiance{0.0f};     // directional: irradiance on a surface facing it, W/m^2
-  vec3 radiance{0.0f};       // sphere: emitted radiance of its surface, W/(sr m^2)
+  vec3 radiance{0.0f};       // sphere: emitted radiance of its surface, W/(sr m^2); environment:
+                             // the sky's radiance, or the factor its map is multiplied by
+  vec3 map_mean{1.0f};       // environment: the map's mean over the sphere (1 without a map)
+  float rotation = 0.0f;     // environment: radians about +y (scene/environment.h)
   float radius = 0.0f;       // sphere
   float cos_inner = 1.0f;    // spot: full intensity inside this cone
   float cos_outer = 0.0f;    // spot: no light outside this cone (smoothstep between)
@@ -37,6 +40,10 @@ struct LightRecord {
         return irradiance * (kPi * scene_radius * scene_radius);
       case LightType::kSphere:
         return radiance * (kPi * 4.0f * kPi * radius * radius);
+      case LightType::kEnvironment:
+        // The flux through a disc of the scene's radius across every direction (what its
+        // photons carry): pi r^2 times the radiance integrated over the sphere.
+        return radiance * map_mean * (4.0f * kPi * kPi * scene_radius * scene_radius);
     }
     return vec3(0.0f);
   }
@@ -52,9 +59,12 @@ struct Light : LightRecord {
                     float outer_deg);
   static Light directional(vec3 direction, vec3 irradiance);
   static Light sphere(vec3 centre, float radius, vec3 radiance);
+  // A sky of `radiance` from every direction, or the factor on the scene's environment map
+  // (Scene::environment_map), turned by rotation_deg about +y.
+  static Light environment(vec3 radiance, float rotation_deg = 0.0f);
 
   // The colour that sets this light's brightness: intensity (point, spot), irradiance
-  // (directional) or radiance (sphere).
+  // (directional) or radiance (sphere, environment).
   vec3& emission();
   const vec3& emission() const { return const_cast<Light*>(this)->emission(); }
   const char* type_name() const;

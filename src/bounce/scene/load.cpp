@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <filesystem>
+#include <memory>
 #include <string_view>
 #include <system_error>
 
@@ -112,6 +113,26 @@ Scene load_model_file(const std::string& path) {
        path);
 }
 
+bool add_default_environment(Scene& scene) {
+  if (!scene.lights.empty() || !scene.area_lights.empty()) return false;
+  warn(fmt::format(
+      "{}: the scene has no lights; lighting it with a default sky (radiance {:g} above the "
+      "horizon, {:g} below): add lights, or an environment light, to the scene file to choose",
+      scene.source, kDefaultSkyRadiance, kDefaultGroundRadiance));
+  // A map of two rows, the upper and the lower hemisphere: light from above and less from
+  // below, so tops, sides and undersides of a model read apart.
+  Image image(1, 2);
+  image.at(0, 0) = vec3(kDefaultSkyRadiance);
+  image.at(0, 1) = vec3(kDefaultGroundRadiance);
+  scene.environment_map =
+      std::make_shared<const EnvironmentMap>(EnvironmentMap::from_image(image, "default sky"));
+  Light sky = Light::environment(vec3(1.0f));
+  sky.name = "default sky";
+  scene.lights.push_back(sky);
+  scene.derive();
+  return true;
+}
+
 Scene load_scene(const std::string& spec) {
   if (spec.empty()) fail("empty scene name; {}", kAcceptedForms);
   if (is_builtin_scene(spec)) {
@@ -123,6 +144,7 @@ Scene load_scene(const std::string& spec) {
     Scene scene = quake::load_quake_map(spec).scene;
     scene.source = spec;
     scene.finalize();
+    add_default_environment(scene);
     return scene;
   }
   const FileKind kind = file_kind(spec);
@@ -131,6 +153,7 @@ Scene load_scene(const std::string& spec) {
   Scene scene = kind == FileKind::kSceneFile ? load_scene_file(spec) : load_model_file(spec);
   scene.source = spec;
   scene.finalize();
+  add_default_environment(scene);
   return scene;
 }
 

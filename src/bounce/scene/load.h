@@ -9,8 +9,20 @@
 
 namespace bounce {
 
-// Loads and finalizes a scene; throws Error with the file (or spec) and the problem.
+// Loads and finalizes a scene; throws Error with the file (or spec) and the problem. A file
+// scene with no light at all gets the default sky (add_default_environment), so it renders
+// visibly.
 Scene load_scene(const std::string& spec);
+
+// The default sky of a scene without lights: white radiance 1 from the upper hemisphere, so
+// that an unshadowed diffuse surface facing up shows its albedo at the default exposure (0 EV
+// maps radiance 1 to white), and a darker grey from below, so shapes read.
+inline constexpr float kDefaultSkyRadiance = 1.0f;
+inline constexpr float kDefaultGroundRadiance = 0.25f;
+// Gives a finalized scene that has no lights and no emissive surfaces the default sky, an
+// environment light with a two-row map (kDefaultSkyRadiance above the horizon,
+// kDefaultGroundRadiance below), with a warning saying so; returns whether it did.
+bool add_default_environment(Scene& scene);
 
 // Individual loaders; each returns a scene that is not yet finalized.
 Scene load_obj(const std::string& path);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <memory>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -391,7 +392,10 @@ std::initializer_list<std::string_view> light_keys(const std::string& type) {
                                                                        "irradiance", "animation"};
   static const std::initializer_list<std::string_view> kSphere = {
       "type", "name", "position", "radius", "radiance", "animation"};
+  static const std::initializer_list<std::string_view> kEnvironment = {
+      "type", "name", "radiance", "intensity", "map", "rotation_deg"};
   if (type == "point") return kPoint;
+  if (type == "environment") return kEnvironment;
   if (type == "spot") return kSpot;
   if (type == "directional") return kDirectional;
   return kSphere;
@@ -410,18 +414,49 @@ vec3 non_negative(const Object& o, const char* key, const std::string& file) {
   return v;
 }
 
-// Parses one light; a light with an "animation" also gets its track into `track`.
+// An environment light: a sky of `radiance` (default white) times `intensity` (default 1), or
+// an equirectangular map (.exr or .hdr, relative to the scene file) multiplied by both, turned
+// by rotation_deg about +y. The map goes to `map`.
+Light parse_environment(const Object& o, const std::string& file, const fs::path& dir,
+                        std::shared_ptr<const EnvironmentMap>* map) {
+  const vec3 radiance = o.has("radiance") ? non_negative(o, "radiance", file) : vec3(1.0f);
+  const double intensity = o.number_or("intensity", 1.0);
+  if (!(intensity >= 0.0)) fail("{}: {}: 'intensity' must not be negative", file, o.where());
+  const double rotation = o.number_or("rotation_deg", 0.0);
+  if (!std::isfinite(rotation)) fail("{}: {}: 'rotation_deg' must be finite", file, o.where());
+  if (o.has("map")) {
+    const std::string name = o.string("map");
+    const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : dir / name;
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+      fail("{}: {}: environment map '{}' not found (looked for {})", file, o.where(), name,
+           path.string());
+    try {
+      *map = std::make_shared<const EnvironmentMap>(EnvironmentMap::load(path.string()));
+    } catch (const Error& e) {
+      fail("{}: {}: {}", file, o.where(), e.what());
+    }
+  }
+  return Light::environment(radiance * float(intensity), float(rotation));
+}
+
+// Parses one light; a light with an "animation" also gets its track into `track`, an environment
+// light's map goes to `map`.
 Light parse_light(const json& j, const std::string& file, const std::string& where, TrsTrack* track,
-                  bool* animated) {
+                  bool* animated, const fs::path& dir, std::shared_ptr<const EnvironmentMap>* map) {
   if (!j.is_object()) fail("{}: {}: expected an object, found {}", file, where, j.type_name());
   if (!j.contains("type")) fail("{}: {}: missing required key 'type'", file, where);
   if (!j.at("type").is_string()) fail("{}: {}: 'type' must be a string", file, where);
   const std::string type = j.at("type").get<std::string>();
-  if (type != "point" && type != "spot" && type != "directional" && type != "sphere")
-    fail("{}: {}: unknown light type '{}' (point, spot, directional or sphere)", file, where, type);
+  if (type != "point" && type != "spot" && type != "directional" && type != "sphere" &&
+      type != "environment")
+    fail("{}: {}: unknown light type '{}' (point, spot, directional, sphere or environment)", file,
+         where, type);
   const Object o(j, file, where, light_keys(type));
   Light light;
-  if (type == "point") {
+  if (type == "environment") {
+    light = parse_environment(o, file, dir, map);
+  } else if (type == "point") {
     light = Light::point(o.vector("position"), non_negative(o, "intensity", file));
   } else if (type == "spot") {
     const float inner = float(o.number_or("inner_deg", 0.0));
@@ -520,11 +555,18 @@ Scene load_scene_file(const std::string& path) {
     }
   }
   const json& lights = array_or_empty(top, "lights", path);
+  int environments = 0;
   for (size_t i = 0; i < lights.size(); ++i) {
     TrsTrack track;
     bool animated = false;
+    std::shared_ptr<const EnvironmentMap> map;
     scene.lights.push_back(
-        parse_light(lights[i], path, fmt::format("lights[{}]", i), &track, &animated));
+        parse_light(lights[i], path, fmt::format("lights[{}]", i), &track, &animated, dir, &map));
+    if (scene.lights.back().type == LightType::kEnvironment) {
+      if (environments++ > 0)
+        fail("{}: lights[{}]: a second environment light; a scene has at most one", path, i);
+      scene.environment_map = std::move(map);
+    }
     if (animated) {
       AnimatedLight al;
       al.light = uint32_t(scene.lights.size() - 1);

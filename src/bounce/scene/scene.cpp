@@ -84,6 +84,16 @@ void validate_light(const Scene& s, const Light& l, size_t index) {
          kMaxSceneExtent, l.radius);
   if (l.type == LightType::kSpot && !(l.cos_outer < l.cos_inner))
     fail("{}: {} needs an outer cone wider than its inner cone", s.source, where);
+  if (l.type == LightType::kEnvironment) {
+    if (!std::isfinite(l.rotation))
+      fail("{}: {} has a rotation that is not finite", s.source, where);
+    // What the map multiplies must stay within the emission limit too.
+    const float peak =
+        max_component(l.radiance) * (s.environment_map ? s.environment_map->max_value() : 1.0f);
+    if (!(peak <= kMaxEmission))
+      fail("{}: {}: radiance times the map's brightest texel ({:g}) is above the limit of {:g}",
+           s.source, where, peak, kMaxEmission);
+  }
 }
 
 void check_extent(const Scene& s, vec3 p, const std::string& what) {
@@ -110,7 +120,15 @@ void Scene::finalize() {
   if (source.empty()) source = "<scene>";
   for (const auto& m : materials) validate_material(*this, m);
   for (const auto& m : meshes) validate_mesh(*this, m);
-  for (size_t i = 0; i < lights.size(); ++i) validate_light(*this, lights[i], i);
+  size_t environments = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    validate_light(*this, lights[i], i);
+    if (lights[i].type == LightType::kEnvironment) ++environments;
+  }
+  if (environments > 1)
+    fail("{}: the scene has {} environment lights; at most one is allowed", source, environments);
+  if (environment_map && environments == 0)
+    fail("{}: the scene has an environment map but no environment light", source);
   for (const auto& t : textures)
     if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * t.height)
       fail("{}: texture '{}' has inconsistent size", source, t.name);
@@ -152,8 +170,10 @@ void Scene::derive() {
     }
   }
   for (size_t i = 0; i < lights.size(); ++i) {
-    const Light& l = lights[i];
-    if (l.type == LightType::kDirectional) continue;
+    Light& l = lights[i];
+    if (l.type == LightType::kEnvironment)
+      l.map_mean = environment_map ? environment_map->mean() : vec3(1.0f);
+    if (l.type == LightType::kDirectional || l.type == LightType::kEnvironment) continue;
     if (!within_extent(l.position))
       check_extent(*this, l.position,
                    fmt::format("light {} ('{}', {}) position", i, l.name, l.type_name()));
@@ -202,6 +222,7 @@ void Scene::append(Scene&& other, const mat4& m) {
     mesh.transform(m);
     meshes.push_back(std::move(mesh));
   }
+  if (other.environment_map && !environment_map) environment_map = std::move(other.environment_map);
   const mat3 linear(m);
   for (auto& l : other.lights) {
     l.position = vec3(m * vec4(l.position, 1.0f));

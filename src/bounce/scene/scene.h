@@ -1,12 +1,14 @@
 // The scene model every technique renders: meshes, materials, textures, lights and a camera.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bounce/scene/animation.h"
 #include "bounce/scene/bounds.h"
 #include "bounce/scene/camera.h"
+#include "bounce/scene/environment_map.h"
 #include "bounce/scene/light.h"
 #include "bounce/scene/material.h"
 #include "bounce/scene/mesh.h"
@@ -34,6 +36,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Light> lights;
+  // The map of the environment light (a scene has at most one); null for a uniform sky.
+  std::shared_ptr<const EnvironmentMap> environment_map;
   Camera camera;
   bool has_camera = false;  // false: finalize() frames the bounds from the front
   Animation animation;      // keyframed meshes and lights, camera path (may be empty)

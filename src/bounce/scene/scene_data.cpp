@@ -110,6 +110,11 @@ void SceneData::copy_small_arrays(const Scene& scene) {
   materials_.assign(scene.materials.begin(), scene.materials.end());
   lights_.assign(scene.lights.begin(), scene.lights.end());
   bounds_ = scene.bounds;
+  // Maps are immutable: sharing the scene's keeps the view's pointers valid without a copy.
+  environment_map_ = scene.environment_map;
+  environment_ = -1;
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type == LightType::kEnvironment) environment_ = int32_t(i);
 
   size_t triangles = 0;
   for (const AreaLight& a : scene.area_lights) triangles += a.triangles.size();
@@ -164,6 +169,8 @@ SceneView SceneData::view() const {
   v.area_lights = area_lights_.data();
   v.area_light_count = uint32_t(area_lights_.size());
   v.bounds = bounds_;
+  v.environment = environment_;
+  if (environment_ >= 0 && environment_map_) v.environment_map = environment_map_->view();
   return v;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -104,6 +105,8 @@ class SceneData {
   std::vector<float> area_cdf_;
   std::vector<AreaLightView> area_lights_;
   Bounds bounds_;
+  std::shared_ptr<const EnvironmentMap> environment_map_;
+  int32_t environment_ = -1;
 };
 
 }  // namespace bounce

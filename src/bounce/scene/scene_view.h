@@ -9,6 +9,7 @@
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/scene/bounds.h"
+#include "bounce/scene/environment.h"
 #include "bounce/scene/light.h"
 #include "bounce/scene/material.h"
 #include "bounce/scene/mesh.h"
@@ -47,11 +48,20 @@ struct SceneView {
   const AreaLightView* area_lights = nullptr;
   uint32_t area_light_count = 0;
   Bounds bounds;
+  // The environment light (an entry of `lights`; a scene has at most one), -1 if none, and its
+  // map (empty for a uniform sky). Rays that leave the scene see it.
+  int32_t environment = -1;
+  EnvironmentMapView environment_map;
 
   // Diffuse albedo of a material at a texture coordinate (as Scene::albedo).
   BOUNCE_HD vec3 albedo(const MaterialRecord& material, vec2 uv) const {
     if (material.albedo_texture < 0) return material.albedo;
     return material.albedo * textures[material.albedo_texture].sample(uv);
+  }
+  // Radiance seen looking along unit direction d past all geometry (0 without an environment).
+  BOUNCE_HD vec3 background(vec3 d) const {
+    if (environment < 0) return vec3(0.0f);
+    return environment_radiance(lights[environment], environment_map, d);
   }
   // Global triangle id (as Scene::triangle_offsets numbers them).
   BOUNCE_HD uint32_t triangle_id(uint32_t mesh, uint32_t triangle) const {

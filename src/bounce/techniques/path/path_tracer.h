@@ -170,7 +170,16 @@ BOUNCE_HD inline vec3 reflected_radiance(const PathScene& ps, const PathSettings
       }
       break;
     }
-    if (!hit.valid()) break;
+    if (!hit.valid()) {
+      // The path leaves the scene: the environment's radiance, weighted against its sampling.
+      if (counts && ps.scene.environment >= 0) {
+        const float light_pdf =
+            ps.pick_pmf(uint32_t(ps.scene.environment)) * environment_light_pdf(ps.scene, b.wi);
+        radiance +=
+            throughput * ps.scene.background(b.wi) * emission_weight(settings, b.pdf, light_pdf);
+      }
+      break;
+    }
     const SurfaceHit s = surface_at(ps.scene, hit, b.wi);
     if (counts && max_component(s.emission) > 0.0f) {
       const int32_t area = ps.area_light_of_triangle[ps.scene.triangle_id(hit.mesh, hit.triangle)];
@@ -199,7 +208,7 @@ BOUNCE_HD inline vec3 ray_radiance(const PathScene& ps, const PathSettings& sett
       ps.trace.intersect(Ray{origin, 0.0f, direction, std::numeric_limits<float>::infinity()});
   ++counters.rays;
   if (hit.sphere_light()) return ps.scene.lights[hit.light].radiance;
-  if (!hit.valid()) return vec3(0.0f);
+  if (!hit.valid()) return ps.scene.background(direction);
   const SurfaceHit s = surface_at(ps.scene, hit, direction);
   return s.emission + reflected_radiance(ps, settings, s, -direction, rng, counters);
 }
