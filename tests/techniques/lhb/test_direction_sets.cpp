@@ -56,8 +56,9 @@ TEST(DirectionSets, UnitAndBalanced) {
       sum += d;
     }
     // The solids and the UV grid are symmetric: their directions sum to zero.
-    if (set.name().rfind("halton", 0) != 0)
+    if (set.name().rfind("halton", 0) != 0) {
       EXPECT_LT(glm::length(sum), 1e-3f * float(set.size())) << set.name();
+    }
   }
 }
 
@@ -88,7 +89,9 @@ TEST(DirectionSets, LookupEqualsBruteForce) {
       EXPECT_EQ(set.nearest(q), set.nearest_brute_force(q)) << set.name();
     }
     // Bounded work: far fewer candidates than directions once the set is large.
-    if (set.size() >= 128) EXPECT_LT(set.max_candidates(), set.size() / 4) << set.name();
+    if (set.size() >= 128) {
+      EXPECT_LT(set.max_candidates(), set.size() / 4) << set.name();
+    }
   }
 }
 
