@@ -75,6 +75,15 @@ TEST_F(LhbVsReference, TwoBouncesMatchTheReferenceAndDroppedBouncesShow) {
   EXPECT_GT(one, 1.3 * two) << "the second bounce must show";
 }
 
+TEST_F(LhbVsReference, BuffersTooLargeToAllocateAreAClearError) {
+  auto technique = std::make_unique<LhbTechnique>();
+  technique->settings().size = 4096;  // 320 x 4096^2 x 16 elements: 645 GiB
+  Renderer renderer(*scene_, *tracer_, std::move(technique));
+  FrameSettings settings;
+  settings.width = settings.height = 8;
+  EXPECT_THROW(renderer.render(scene_->camera, settings), Error);
+}
+
 TEST(LhbTechnique, IsRegisteredWithItsParameters) {
   const auto technique = make_technique("lhb");
   ASSERT_EQ(technique->name(), "lhb");
@@ -82,6 +91,7 @@ TEST(LhbTechnique, IsRegisteredWithItsParameters) {
                            "cone_radius", "interleave", "filter"})
     EXPECT_NE(technique->params().find(name), nullptr) << name;
   EXPECT_THROW(technique->params().set("bounces", "-1"), Error);
+  EXPECT_THROW(technique->params().set("directions", "100000"), Error);
 }
 
 }  // namespace

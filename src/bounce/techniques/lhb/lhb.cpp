@@ -8,12 +8,16 @@
 
 namespace bounce {
 
+namespace {
+constexpr double kMaxBufferBytes = 8.0 * double(1 << 30);  // one slab
+}  // namespace
+
 LhbTechnique::LhbTechnique() {
   LhbTechniqueSettings& s = settings_;
   params_.add_int("direction_set", &s.direction_kind, 0, kDirectionKindCount - 1,
                   "buffer directions: 0 icosahedron, 1 octahedron, 2 tetrahedron, 3 Halton, "
                   "4 UV grid");
-  params_.add_int("directions", &s.directions, 1, 65535,
+  params_.add_int("directions", &s.directions, 1, 2048,
                   "number of buffer directions (solids: the nearest of base * 4^level)");
   params_.add_int("size", &s.size, 4, LhbSettings::kMaxSize, "N: texels per side of a buffer");
   params_.add_int("layers", &s.layers, 1, LhbSettings::kMaxLayers, "L: elements per texel");
@@ -50,6 +54,16 @@ void LhbTechnique::prepare(const PrepareContext& context) {
   if (wanted.kind != built_.kind || wanted.directions != built_.directions)
     directions_ = DirectionSet::make(DirectionKind(s.direction_kind), s.directions);
   if (c.everything || !(wanted == built_) || buffers_.direction_count() == 0) {
+    // directions x N^2 texels x L elements of 8 bytes: refuse sizes that cannot be allocated
+    // with a message that names them, instead of failing inside the allocator.
+    const double bytes = double(directions_.size()) * double(s.size) * double(s.size) *
+                         (double(s.layers) * double(sizeof(LhbElement)) + 1.0);
+    if (bytes > kMaxBufferBytes)
+      fail(
+          "lhb: {} directions x {}x{} texels x {} layers need {:.1f} GiB of hit buffers (at "
+          "most {:.0f} GiB): lower directions, size or layers",
+          directions_.size(), s.size, s.size, s.layers, bytes / double(1 << 30),
+          kMaxBufferBytes / double(1 << 30));
     ScopedStage stage(context.times, "prepare/lhb build");
     LhbSettings ls;
     ls.size = s.size;
