@@ -6,6 +6,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/techniques/direct/direct_only.h"
+#include "bounce/techniques/lhb/lhb.h"
 #include "bounce/techniques/path/path_technique.h"
 #include "bounce/techniques/registry.h"
 #include "bounce/techniques/tiled/tiled.h"
@@ -20,6 +21,7 @@ using Factory = std::function<std::unique_ptr<Technique>()>;
 const std::vector<std::pair<std::string, Factory>>& registry() {
   static const std::vector<std::pair<std::string, Factory>> techniques = {
       {"direct", [] { return std::make_unique<DirectOnly>(); }},
+      {"lhb", [] { return std::make_unique<LhbTechnique>(); }},
       {"path", [] { return std::make_unique<PathTracing>(); }},
       {"tiled", [] { return std::make_unique<TiledPhotonMapping>(); }},
       {"vertex", [] { return std::make_unique<VertexPhotonMapping>(); }},

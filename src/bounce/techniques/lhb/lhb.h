@@ -1,0 +1,64 @@
+// Technique "lhb": indirect light gathered through layered hit buffers after seed 001
+// (001_f8684133514c5eaa.txt; notes/seed-001.md), on the CPU. See README.md beside this file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bounce/render/light_picker.h"
+#include "bounce/render/technique.h"
+#include "bounce/techniques/lhb/direction_sets.h"
+#include "bounce/techniques/lhb/layered_hit_buffers.h"
+#include "bounce/techniques/lhb/lhb_kernels.h"
+
+namespace bounce {
+
+struct LhbTechniqueSettings {
+  int direction_kind = int(DirectionKind::kIcosahedron);  // DirectionKind
+  int directions = 320;      // count (the nearest a subdivided solid offers)
+  int size = 128;            // N: texels per side of each buffer
+  int layers = 16;           // L: elements per texel
+  int paths = 1;             // per pixel per frame
+  int bounces = 2;           // indirect bounces
+  float cone_radius = 1.5f;  // texels
+  int interleave = 3;        // n x n interleaved sample sets (1: off)
+  bool filter = true;        // the discontinuity buffer over the n x n window
+  float filter_normal = 0.9f;
+  float filter_distance = 0.05f;  // position gap / view depth
+  int seed = 0;
+};
+
+class LhbTechnique final : public Technique {
+ public:
+  LhbTechnique();
+  std::string name() const override { return "lhb"; }
+  std::vector<TechniqueOption> options() const override;
+  std::vector<std::string> still_defaults() const override;
+  // Builds the direction set and the buffers when the scene or the buffer parameters change;
+  // rebuilds only the moving meshes' buffers when meshes move; the light picker on light,
+  // material or geometry changes.
+  void prepare(const PrepareContext& context) override;
+  // Paths per pixel through the buffers, then the discontinuity filter.
+  void indirect(const FrameContext& context, Image& out) override;
+
+  LhbTechniqueSettings& settings() { return settings_; }
+  const LhbTechniqueSettings& settings() const { return settings_; }
+  const DirectionSet& direction_set() const { return directions_; }
+  const LayeredHitBuffers& buffers() const { return buffers_; }
+
+ private:
+  struct BuiltWith {
+    int kind = -1, directions = 0, size = 0, layers = 0;
+    bool operator==(const BuiltWith&) const = default;
+  };
+
+  LhbTechniqueSettings settings_;
+  DirectionSet directions_;
+  LayeredHitBuffers buffers_;
+  BuiltWith built_;
+  LightPicker lights_;
+  std::vector<vec3> incoming_;  // per pixel, before the filter
+};
+
+}  // namespace bounce
