@@ -7,6 +7,7 @@
 #include "bounce/render/memory_estimate.h"
 #include "bounce/render/photon_path.h"
 #include "bounce/scene/load.h"
+#include "bounce/techniques/lhb/lhb.h"
 #include "bounce/techniques/tiled/tiled.h"
 #include "bounce/techniques/vertex/vertex.h"
 
@@ -62,6 +63,17 @@ TEST(MemoryEstimate, VertexCountsTheSplitTreeAndTheRefinement) {
   s.recursion_depth = 4;
   s.photons_from_light = 10000000;
   EXPECT_GT(vertex.memory_estimate(scene), uint64_t(1) << 60);
+}
+
+TEST(MemoryEstimate, LhbCountsItsHitBuffers) {
+  const Scene scene = load_scene("cornell");
+  LhbTechnique lhb;
+  LhbTechniqueSettings& s = lhb.settings();
+  s.directions = 320;
+  s.size = 128;
+  s.layers = 16;
+  // 320 directions x 128^2 texels x (16 elements of 8 bytes + a count byte).
+  EXPECT_EQ(lhb.memory_estimate(scene), uint64_t(320) * 128 * 128 * (16 * 8 + 1));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/timer.h"
+#include "bounce/render/memory_estimate.h"
 
 namespace bounce {
 
@@ -46,6 +47,19 @@ std::vector<std::string> LhbTechnique::still_defaults() const {
   return {"paths=16"};  // the seed's dynamic-scene setting (16 paths, 2 bounces)
 }
 
+double LhbTechnique::hit_buffer_bytes(size_t directions, int size, int layers) {
+  // Per texel: L elements and a count byte (LayeredHitBuffers' slabs).
+  return double(directions) * double(size) * double(size) *
+         (double(layers) * double(sizeof(LhbElement)) + 1.0);
+}
+
+uint64_t LhbTechnique::memory_estimate(const Scene& scene) const {
+  const LhbTechniqueSettings& s = settings_;
+  // The static buffers, and as many again for moving meshes when the scene animates.
+  const double copies = scene.animation.empty() ? 1.0 : 2.0;
+  return saturating_bytes(copies * hit_buffer_bytes(size_t(s.directions), s.size, s.layers));
+}
+
 void LhbTechnique::prepare(const PrepareContext& context) {
   const SceneChange& c = context.change;
   const LhbTechniqueSettings& s = settings_;
@@ -56,8 +70,7 @@ void LhbTechnique::prepare(const PrepareContext& context) {
   if (c.everything || !(wanted == built_) || buffers_.direction_count() == 0) {
     // directions x N^2 texels x L elements of 8 bytes: refuse sizes that cannot be allocated
     // with a message that names them, instead of failing inside the allocator.
-    const double bytes = double(directions_.size()) * double(s.size) * double(s.size) *
-                         (double(s.layers) * double(sizeof(LhbElement)) + 1.0);
+    const double bytes = hit_buffer_bytes(directions_.size(), s.size, s.layers);
     if (bytes > kMaxBufferBytes)
       fail(
           "lhb: {} directions x {}x{} texels x {} layers need {:.1f} GiB of hit buffers (at "

@@ -38,6 +38,10 @@ class LhbTechnique final : public Technique {
   // Builds the direction set and the buffers when the scene or the buffer parameters change;
   // rebuilds only the moving meshes' buffers when meshes move; the light picker on light,
   // material or geometry changes.
+  // The layered hit buffers (and their moving-mesh copy in animated scenes).
+  uint64_t memory_estimate(const Scene& scene) const override;
+  // Bytes of the buffers for `directions` directions of size x size texels and `layers` layers.
+  static double hit_buffer_bytes(size_t directions, int size, int layers);
   void prepare(const PrepareContext& context) override;
   // Paths per pixel through the buffers, then the discontinuity filter.
   void indirect(const FrameContext& context, Image& out) override;
