@@ -19,6 +19,8 @@ packages=(
   openarena-081-maps openarena-081-textures openarena-data
   # Real glTF and OBJ files, many deliberately broken, for the loaders' corpus test.
   assimp-testmodels
+  # The sanitizer build (the asan preset) and its libFuzzer targets: clang and its runtimes.
+  clang libclang-rt-14-dev
 )
 
 missing=()
