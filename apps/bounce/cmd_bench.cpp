@@ -142,6 +142,9 @@ void run_bench(BenchOptions o) {
   fmt::print("primary rays/s (gbuffer)     {:>10.2f} M\n", primary / (gbuffer_ms * 1e3));
   fmt::print("shadow rays/s (direct stage) {:>10.2f} M  ({:.0f} shadow rays per frame)\n",
              shadow / (direct_ms * 1e3), shadow / o.frames);
+  if (const uint64_t kept = renderer.technique().memory_estimate(scene); kept > 0)
+    fmt::print("technique data (estimate)    {:>10.1f} MiB  (photons, meshes, buffers kept)\n",
+               double(kept) / (1024.0 * 1024.0));
   TemporalRecord temporal;
   if (o.flicker > 0 || o.settle) temporal = run_temporal(o, scene);
   if (o.json.empty()) return;

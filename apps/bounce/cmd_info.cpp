@@ -3,6 +3,7 @@
 
 #include "bounce/scene/load.h"
 #include "bounce/scene/quake/load_quake.h"
+#include "bounce/techniques/registry.h"
 #include "bounce/trace/tracer.h"
 #include "options.h"
 
@@ -98,6 +99,16 @@ void run_info(const std::string& spec) {
   for (const auto& a : scene.area_lights)
     fmt::print("  area '{}': {} triangles, {:.4g} m^2, radiance ({:.4g}, {:.4g}, {:.4g})\n", a.name,
                a.triangles.size(), a.area, a.radiance.x, a.radiance.y, a.radiance.z);
+  // What each technique keeps beyond its per-pixel buffers, at its default parameters: photons,
+  // refined meshes, hit buffers (Technique::memory_estimate).
+  std::string kept;
+  for (const std::string& name : technique_names()) {
+    const uint64_t bytes = make_technique(name)->memory_estimate(scene);
+    if (bytes > 0)
+      kept += fmt::format("{}{} {:.1f} MiB", kept.empty() ? "" : ", ", name,
+                          double(bytes) / (1024.0 * 1024.0));
+  }
+  if (!kept.empty()) fmt::print("memory      {} (technique data at default parameters)\n", kept);
   for (auto [quality, name] :
        {std::pair{BuildQuality::kHigh, "high"}, std::pair{BuildQuality::kLow, "low"}}) {
     const auto tracer = make_embree_tracer(scene, quality);

@@ -387,5 +387,18 @@ TEST(CliReliability, AnInterruptedReferenceResumesFromItsCheckpointToTheSameImag
             std::string::npos);
 }
 
+// info and bench say what a technique keeps beyond its per-pixel buffers.
+TEST(CliReliability, InfoAndBenchReportTechniqueMemory) {
+  const Result info = run("info cornell");
+  EXPECT_EQ(info.status, 0) << info.output;
+  // lhb's default buffers: 320 directions x 128^2 texels x (16 x 8 + 1) bytes = 645.0 MiB.
+  EXPECT_NE(info.output.find("lhb 645.0 MiB"), std::string::npos) << info.output;
+  const Result bench = run("bench cornell -t lhb -W 16 -H 16 -n 1 --warmup 0 -p size=32");
+  EXPECT_EQ(bench.status, 0) << bench.output;
+  // 320 x 32^2 x 129 bytes = 40.3 MiB.
+  EXPECT_NE(bench.output.find("technique data (estimate)"), std::string::npos) << bench.output;
+  EXPECT_NE(bench.output.find("40.3 MiB"), std::string::npos) << bench.output;
+}
+
 }  // namespace
 }  // namespace bounce
