@@ -94,9 +94,7 @@ void run_bench(BenchOptions o) {
   Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   if (o.animate && scene.animation.empty())
     fail("{}: --animate: the scene has no animation", scene.source);
-  auto technique = make_configured_technique(o.frame);
-  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
-               technique->memory_estimate(scene));
+  auto technique = make_checked_technique(o.frame, scene);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(o.frame, renderer);

@@ -37,9 +37,7 @@ void run_render(const RenderOptions& o) {
   const double load_ms = load_watch.elapsed_ms();
   FrameOptions frame_options = o.frame;
   frame_options.still = true;  // a still affords more work per pass than a real-time frame
-  auto technique = make_configured_technique(frame_options);
-  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
-               technique->memory_estimate(scene));
+  auto technique = make_checked_technique(frame_options, scene);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
   configure_pipeline(frame_options, renderer);

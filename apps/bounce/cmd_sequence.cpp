@@ -79,9 +79,7 @@ void run_sequence(const SequenceOptions& o) {
         "--global-numbers: --from {:g} s is not on the frame grid at {:g} fps (a whole number of "
         "frames from 0 s)",
         from, o.fps);
-  auto technique = make_configured_technique(o.frame);
-  check_memory(scene, o.frame.width, o.frame.height, kFrameBytesPerPixel,
-               technique->memory_estimate(scene));
+  auto technique = make_checked_technique(o.frame, scene);
   create_directory(pattern);
 
   auto tracer = make_embree_tracer(scene);

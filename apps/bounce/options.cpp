@@ -204,6 +204,12 @@ std::unique_ptr<Technique> make_configured_technique(const FrameOptions& o) {
   return technique;
 }
 
+std::unique_ptr<Technique> make_checked_technique(const FrameOptions& o, const Scene& scene) {
+  auto technique = make_configured_technique(o);
+  check_memory(scene, o.width, o.height, kFrameBytesPerPixel, technique->memory_estimate(scene));
+  return technique;
+}
+
 namespace {
 void apply_parameters(const FrameOptions& o, Technique& technique) {
   ParamSet& params = technique.params();

@@ -58,6 +58,9 @@ void configure_pipeline(const FrameOptions& options, Renderer& renderer);
 // Creates the technique and applies its still defaults (for a still), its options and the --param
 // assignments, in that order (throws Error on a bad one, or an option of another technique).
 std::unique_ptr<Technique> make_configured_technique(const FrameOptions& options);
+// The configured technique, after checking that a frame pipeline of the options' size with the
+// data that technique keeps fits under the memory cap (check_memory; throws Error when not).
+std::unique_ptr<Technique> make_checked_technique(const FrameOptions& options, const Scene& scene);
 
 // Command registration: each command lives in its own file.
 void add_render_command(CLI::App& app);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../input_checks.h"
 #include "bounce/core/error.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_edit.h"
@@ -24,9 +23,7 @@ vec3 vector_arg(const ScriptAction& a, size_t first) {
 ViewSession::ViewSession(const ViewOptions& options)
     : options_(options), scene_(load_scene(options.frame.scene)) {
   scaler_.settings().target_ms = options.target_ms;
-  auto technique = make_configured_technique(options.frame);
-  check_memory(scene_, options.frame.width, options.frame.height, kFrameBytesPerPixel,
-               technique->memory_estimate(scene_));
+  auto technique = make_checked_technique(options.frame, scene_);
   tracer_ = make_embree_tracer(scene_);
   renderer_ = std::make_unique<Renderer>(scene_, *tracer_, std::move(technique));
   configure_pipeline(options.frame, *renderer_);
