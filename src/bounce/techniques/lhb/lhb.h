@@ -27,7 +27,7 @@ struct LhbTechniqueSettings {
   bool filter = true;        // the discontinuity buffer over the n x n window
   float filter_normal = 0.9f;
   float filter_distance = 0.05f;  // position gap / view depth
-  int lowres = 2;                 // paths at 1/lowres of the width and height, edges at full
+  int lowres = 1;                 // paths at 1/lowres of the width and height, edges at full
   float edge_normal = 0.99f;      // edge test: least normal agreement
   float edge_distance = 0.01f;    // edge test: position gap / scene diagonal
   bool show_edges = false;        // re-estimated pixels in yellow
