@@ -17,12 +17,19 @@ constexpr int kSize = 32;
 // 8-bit MSE against the reference, 32 frames of 4 paths: measured 72 with two bounces, 145 with
 // one, 1334 without indirect light (5 bounces: 45; two bounces over 128 frames: 29).
 constexpr double kTwoBounceBound = 100.0;
+// lowres 2, same frames: measured 73.0 (lowres 1: 72.1) with 462 of 1024 pixels edges.
+constexpr double kLowResBound = 85.0;
 
 // The last of `frames` frames at rest: direct light and the per-frame indirect estimates
 // averaged by the pipeline.
 Image lhb_image(const Scene& scene, Tracer& tracer, int bounces, int frames, int paths,
-                int interleave = 3) {
+                int interleave = 3, int lowres = 1, size_t* edge_pixels = nullptr) {
   auto technique = std::make_unique<LhbTechnique>();
+  const LhbTechnique* lhb = technique.get();
+  technique->settings().lowres = lowres;
+  // At 32x32 a jittered pixel spans about 2% of the diagonal: the default gap (1%, sized for
+  // 512x512) would call most pixels edges.
+  technique->settings().edge_distance = 0.05f;
   technique->settings().bounces = bounces;
   technique->settings().paths = paths;
   technique->settings().interleave = interleave;
@@ -35,6 +42,7 @@ Image lhb_image(const Scene& scene, Tracer& tracer, int bounces, int frames, int
   const Frame* frame = nullptr;
   for (int k = 0; k < frames; ++k) frame = &renderer.render(scene.camera, settings);
   EXPECT_EQ(frame->frames_averaged, frames);
+  if (edge_pixels) *edge_pixels = lhb->edge_pixels();
   return frame->color;
 }
 
@@ -75,6 +83,22 @@ TEST_F(LhbVsReference, TwoBouncesMatchTheReferenceAndDroppedBouncesShow) {
   EXPECT_GT(one, 1.3 * two) << "the second bounce must show";
 }
 
+TEST_F(LhbVsReference, HalfResolutionPathsStayNearFullResolution) {
+  // Paths from one pixel in four, upsampled, with the edges (the box's silhouettes, the room's
+  // corners) traced at full resolution: the error stays near the full-resolution one.
+  size_t full_edges = 1, half_edges = 0;
+  const double full = mse8(lhb_image(*scene_, *tracer_, 2, 32, 4, 3, 1, &full_edges));
+  const double half = mse8(lhb_image(*scene_, *tracer_, 2, 32, 4, 3, 2, &half_edges));
+  RecordProperty("mse8_lowres_1", std::to_string(full));
+  RecordProperty("mse8_lowres_2", std::to_string(half));
+  RecordProperty("edge_pixels_lowres_2", std::to_string(half_edges));
+  EXPECT_EQ(full_edges, 0u);
+  EXPECT_GT(half_edges, size_t(kSize));  // at least the silhouettes of the boxes
+  EXPECT_LT(half_edges, size_t(kSize * kSize * 3 / 4));
+  EXPECT_LT(half, kLowResBound) << "full resolution " << full;
+  EXPECT_LT(half, 1.15 * full);
+}
+
 TEST_F(LhbVsReference, BuffersTooLargeToAllocateAreAClearError) {
   auto technique = std::make_unique<LhbTechnique>();
   technique->settings().size = 4096;  // 320 x 4096^2 x 16 elements: 645 GiB
@@ -87,8 +111,9 @@ TEST_F(LhbVsReference, BuffersTooLargeToAllocateAreAClearError) {
 TEST(LhbTechnique, IsRegisteredWithItsParameters) {
   const auto technique = make_technique("lhb");
   ASSERT_EQ(technique->name(), "lhb");
-  for (const char* name : {"direction_set", "directions", "size", "layers", "paths", "bounces",
-                           "cone_radius", "interleave", "filter"})
+  for (const char* name :
+       {"direction_set", "directions", "size", "layers", "paths", "bounces", "cone_radius",
+        "interleave", "filter", "lowres", "edge_normal", "edge_distance", "show_edges"})
     EXPECT_NE(technique->params().find(name), nullptr) << name;
   EXPECT_THROW(technique->params().set("bounces", "-1"), Error);
   EXPECT_THROW(technique->params().set("directions", "100000"), Error);

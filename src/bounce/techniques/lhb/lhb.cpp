@@ -2,6 +2,8 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
+
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/timer.h"
@@ -32,6 +34,12 @@ LhbTechnique::LhbTechnique() {
                     "filter: least normal agreement of a neighbour");
   params_.add_float("filter_distance", &s.filter_distance, 0.0, 10.0,
                     "filter: largest position gap of a neighbour / view depth");
+  params_.add_int("lowres", &s.lowres, 1, 16,
+                  "paths at 1/lowres of the width and height (edges at full resolution)");
+  params_.add_float("edge_normal", &s.edge_normal, -1.0, 1.0, "edge test: normal agreement");
+  params_.add_float("edge_distance", &s.edge_distance, 0.0, 1.0,
+                    "edge test: position gap / scene diagonal");
+  params_.add_bool("show_edges", &s.show_edges, "show re-estimated pixels in yellow");
   params_.add_int("seed", &s.seed, 0, 1 << 30, "seed of the paths' random numbers");
 }
 
@@ -40,6 +48,7 @@ std::vector<TechniqueOption> LhbTechnique::options() const {
       param_option("paths", "paths", "Paths per pixel per frame"),
       param_option("bounces", "bounces", "Indirect bounces (seed default 2)"),
       param_option("directions", "directions", "Number of buffer directions (seed default 320)"),
+      param_option("lowres", "lowres", "Paths at 1/N of the width and height, edges at full"),
   };
 }
 
@@ -64,6 +73,7 @@ void LhbTechnique::prepare(const PrepareContext& context) {
   const SceneChange& c = context.change;
   const LhbTechniqueSettings& s = settings_;
   const BuiltWith wanted{s.direction_kind, s.directions, s.size, s.layers};
+  diagonal_ = std::max(context.scene.bounds.diagonal(), 1e-6f);
   if (c.geometry() || c.lights || c.materials) lights_ = LightPicker::build(context.scene);
   if (wanted.kind != built_.kind || wanted.directions != built_.directions)
     directions_ = DirectionSet::make(DirectionKind(s.direction_kind), s.directions);
@@ -106,19 +116,35 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   const LhbScene ls{path_scene(context.scene_view, context.tracer, lights_), buffers_.view(),
                     directions_.view()};
 
+  gs.interleave_step = settings_.lowres;
   incoming_.resize(g.size());
-  vec3* incoming = incoming_.data();
+  const ImageView incoming_view{incoming_.data(), g.width, g.height};
   tbb::enumerable_thread_specific<PathCounters> counters;
-  {
+  const auto paths = [&ls, &gs, view, &counters](int x, int y) {
+    return lhb_pixel(ls, gs, view, x, y, counters.local());
+  };
+  // At lowres > 1 the paths start from one pixel per lowres^2 block, upsampled, and from every
+  // pixel where normals or positions disagree (the code tiled shares, render/lowres_kernels.h).
+  const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
+                       settings_.show_edges};
+  if (settings_.lowres <= 1) {
     ScopedStage stage(context.times, "indirect/gather");
-    parallel_for_2d(g.width, g.height, [&](int x, int y) {
-      incoming[view.index(x, y)] = lhb_pixel(ls, gs, view, x, y, counters.local());
-    });
+    edge_pixels_ = estimate_at_low_res(view, 1, edges, paths, low_, incoming_view, context.times);
+  } else {
+    edge_pixels_ = estimate_at_low_res(view, settings_.lowres, edges, paths, low_, incoming_view,
+                                       context.times);
   }
   for (const PathCounters& pc : counters) context.counters.rays += pc.rays;
 
   vec3* pixels = out.pixels().data();
+  const vec3* incoming = incoming_.data();
   ScopedStage stage(context.times, "indirect/filter");
+  if (settings_.show_edges && settings_.lowres > 1) {
+    // The debug view: the upsampled incoming light as it is, edges in yellow.
+    parallel_for(
+        g.size(), [&](size_t i) { pixels[i] = incoming[i]; }, 4096);
+    return;
+  }
   const int n = settings_.filter ? settings_.interleave : 1;
   const float normal_dot = settings_.filter_normal, distance = settings_.filter_distance;
   parallel_for_2d(g.width, g.height, [&](int x, int y) {

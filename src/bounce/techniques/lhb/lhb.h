@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bounce/render/light_picker.h"
+#include "bounce/render/lowres_estimate.h"
 #include "bounce/render/technique.h"
 #include "bounce/techniques/lhb/direction_sets.h"
 #include "bounce/techniques/lhb/layered_hit_buffers.h"
@@ -26,6 +27,10 @@ struct LhbTechniqueSettings {
   bool filter = true;        // the discontinuity buffer over the n x n window
   float filter_normal = 0.9f;
   float filter_distance = 0.05f;  // position gap / view depth
+  int lowres = 1;                 // paths at 1/lowres of the width and height, edges at full
+  float edge_normal = 0.99f;      // edge test: least normal agreement
+  float edge_distance = 0.01f;    // edge test: position gap / scene diagonal
+  bool show_edges = false;        // re-estimated pixels in yellow
   int seed = 0;
 };
 
@@ -50,6 +55,8 @@ class LhbTechnique final : public Technique {
   const LhbTechniqueSettings& settings() const { return settings_; }
   const DirectionSet& direction_set() const { return directions_; }
   const LayeredHitBuffers& buffers() const { return buffers_; }
+  // Pixels of the last frame estimated at full resolution as edges (0 at lowres 1).
+  size_t edge_pixels() const { return edge_pixels_; }
 
  private:
   struct BuiltWith {
@@ -63,6 +70,9 @@ class LhbTechnique final : public Technique {
   BuiltWith built_;
   LightPicker lights_;
   std::vector<vec3> incoming_;  // per pixel, before the filter
+  LowResBuffers low_;
+  float diagonal_ = 1.0f;
+  size_t edge_pixels_ = 0;
 };
 
 }  // namespace bounce

@@ -23,6 +23,8 @@ struct LhbGatherSettings {
   int bounces = 2;           // indirect bounces (light reflected this many times before x)
   float cone_radius = 1.5f;  // disc jitter of the projected origin, in texels (seed 5.5)
   int interleave = 4;        // n: the n x n pixels of a tile draw n^2 rotations of one set
+  int interleave_step = 1;   // pixels per interleaving cell: the low-resolution factor, so that
+                             // the low-resolution samples cycle through all n^2 sets
   uint32_t frame = 0;        // new samples every frame
   uint32_t seed = 0;
 };
@@ -141,7 +143,8 @@ BOUNCE_HD inline vec3 lhb_pixel(const LhbScene& ls, const LhbGatherSettings& set
   for (int k = 0; k < settings.paths; ++k) {
     const uint32_t sample = settings.frame * uint32_t(settings.paths) + uint32_t(k);
     Pcg32 rng = path_rng(i, sample, settings.seed);
-    const vec2 u0 = lhb_interleaved_sample(x, y, n, sample);
+    const int step = settings.interleave_step > 0 ? settings.interleave_step : 1;
+    const vec2 u0 = lhb_interleaved_sample(x / step, y / step, n, sample);
     sum += lhb_incoming(ls, settings, s, u0, g.primitive[i], rng, counters);
   }
   return sum / float(settings.paths);

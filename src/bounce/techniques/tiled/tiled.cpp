@@ -125,55 +125,13 @@ void TiledPhotonMapping::estimate(const FrameContext& c, const PhotonBuffer& pho
       bins_.build(g, c.camera, photons, plan.radius, settings_.tile);
   }
   const TiledGatherView gather = gather_view(g, photons, plan);
-  const ImageView image = out.view();
-  const int f = plan.lowres;
-  if (f == 1) {
-    parallel_for_2d(g.width, g.height,
-                    [&](int x, int y) { image.at(x, y) = gather_pixel(gather, x, y); });
-    edge_pixels_ = 0;
-    return;
-  }
-  // Low resolution: estimate at one full-resolution pixel near the centre of each f x f block.
-  LowRes& low = low_;
-  low.width = (g.width + f - 1) / f;
-  low.height = (g.height + f - 1) / f;
-  const size_t n = size_t(low.width) * low.height;
-  low.radiance.resize(n);
-  low.normal.resize(n);
-  low.position.resize(n);
-  low.valid.resize(n);
-  const LowResView low_view{low.radiance.data(),
-                            low.normal.data(),
-                            low.position.data(),
-                            low.valid.data(),
-                            low.width,
-                            low.height,
-                            f};
-  {
-    ScopedStage stage(c.times, "indirect/estimate low-res");
-    parallel_for_2d(low.width, low.height,
-                    [&](int lx, int ly) { estimate_low_res(gather, low_view, lx, ly); });
-  }
-  // Bilinear upsampling; where the interpolated normal or position disagrees with the pixel's
-  // own (an edge), estimate the pixel at full resolution.
-  ScopedStage stage(c.times, "indirect/upsample + edges");
+  // Low resolution: bilinear upsampling of one gather per plan.lowres^2 block; pixels whose
+  // normal or position disagrees with the interpolated one (edges) are gathered themselves.
   const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
                        settings_.show_edges};
-  const ConstLowResView low_read = low_view;
-  // A task per row: the row's interpolation weights are shared, and the views are copied in so
-  // that the compiler keeps their pointers in registers. The edges are counted row by row.
-  edge_pixels_ = parallel_reduce(
-      size_t(g.height), size_t(0),
-      [&](size_t y) {
-        const TiledGatherView v = gather;
-        const ConstLowResView l = low_read;
-        const UpsampleRow row = upsample_row(l, int(y));
-        size_t edge_count = 0;
-        for (int x = 0; x < g.width; ++x)
-          edge_count += upsample_pixel(v, l, edges, row, image, x, int(y)) ? 1 : 0;
-        return edge_count;
-      },
-      [](size_t a, size_t b) { return a + b; }, 4);
+  edge_pixels_ = estimate_at_low_res(
+      gather.g, plan.lowres, edges, [gather](int x, int y) { return gather_pixel(gather, x, y); },
+      low_, out.view(), c.times);
 }
 
 // Photons depend on the scene, not the pixels: they are traced (and their clearances found) in

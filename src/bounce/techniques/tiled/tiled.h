@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bounce/render/lowres_estimate.h"
 #include "bounce/render/photon_hash_grid.h"
 #include "bounce/render/photon_tracing.h"
 #include "bounce/render/technique.h"
@@ -75,11 +76,6 @@ class TiledPhotonMapping final : public Technique {
   size_t edge_pixels() const { return edge_pixels_; }
 
  private:
-  struct LowRes {
-    int width = 0, height = 0;
-    std::vector<vec3> radiance, normal, position;
-    std::vector<uint8_t> valid;
-  };
   // How a frame gathers: a pass, or the kept passes after a camera move.
   struct GatherPlan {
     float radius = 0.0f;
@@ -98,7 +94,7 @@ class TiledPhotonMapping final : public Technique {
   PhotonBuffer union_;  // the passes held, in one buffer, for the gather after a camera move
   TileBins bins_;
   PhotonHashGrid grid_;
-  LowRes low_;
+  LowResBuffers low_;
   Image pass_estimate_;
   Image accumulated_;    // the sum of the passes' estimates
   uint32_t passes_ = 0;  // in accumulated_; 0: restart at the next frame

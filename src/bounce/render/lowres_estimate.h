@@ -1,0 +1,73 @@
+// The CPU launch of lowres_kernels.h: a technique's per-pixel indirect estimate made at
+// 1/factor of the resolution, upsampled, and re-estimated at full resolution on edges.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bounce/core/image_view.h"
+#include "bounce/core/parallel.h"
+#include "bounce/core/parallel_primitives.h"
+#include "bounce/core/timer.h"
+#include "bounce/render/lowres_kernels.h"
+
+namespace bounce {
+
+// The low-resolution samples, kept across frames so that their storage is reused.
+struct LowResBuffers {
+  int width = 0, height = 0;
+  std::vector<vec3> radiance, normal, position;
+  std::vector<uint8_t> valid;
+
+  // Sized for a width x height frame at 1/factor; the view over the samples.
+  LowResView resize(int full_width, int full_height, int factor) {
+    width = (full_width + factor - 1) / factor;
+    height = (full_height + factor - 1) / factor;
+    const size_t n = size_t(width) * size_t(height);
+    radiance.resize(n);
+    normal.resize(n);
+    position.resize(n);
+    valid.resize(n);
+    return {radiance.data(), normal.data(), position.data(), valid.data(), width, height, factor};
+  }
+};
+
+// Writes `out` (the G-buffer's size) with estimate(x, y) at every pixel: directly when factor is
+// 1, else through the low-resolution samples in `low` and the edge test. Returns the number of
+// pixels estimated at full resolution as edges (0 at factor 1). The stages are timed as
+// "indirect/estimate low-res" and "indirect/upsample + edges".
+template <typename Estimate>
+size_t estimate_at_low_res(const ConstGBufferView& g, int factor, const EdgeTest& edges,
+                           const Estimate& estimate, LowResBuffers& low, const ImageView& out,
+                           StageTimes& times) {
+  if (factor <= 1) {
+    parallel_for_2d(g.width, g.height, [&](int x, int y) { out.at(x, y) = estimate(x, y); });
+    return 0;
+  }
+  const LowResView low_view = low.resize(g.width, g.height, factor);
+  {
+    ScopedStage stage(times, "indirect/estimate low-res");
+    parallel_for_2d(low.width, low.height,
+                    [&](int lx, int ly) { estimate_low_res(g, low_view, lx, ly, estimate); });
+  }
+  ScopedStage stage(times, "indirect/upsample + edges");
+  const ConstLowResView low_read = low_view;
+  // A task per row: the row's interpolation weights are shared, and the views are copied in so
+  // that the compiler keeps their pointers in registers (the estimator too: it must be copyable).
+  // The edges are counted row by row.
+  return parallel_reduce(
+      size_t(g.height), size_t(0),
+      [&](size_t y) {
+        const ConstGBufferView gv = g;
+        const ConstLowResView l = low_read;
+        const Estimate e = estimate;
+        const UpsampleRow row = upsample_row(l, int(y));
+        size_t edge_count = 0;
+        for (int x = 0; x < g.width; ++x)
+          edge_count += upsample_pixel(gv, l, edges, row, out, x, int(y), e) ? 1 : 0;
+        return edge_count;
+      },
+      [](size_t a, size_t b) { return a + b; }, 4);
+}
+
+}  // namespace bounce
