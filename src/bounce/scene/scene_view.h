@@ -11,6 +11,7 @@
 #include "bounce/scene/bounds.h"
 #include "bounce/scene/light.h"
 #include "bounce/scene/material.h"
+#include "bounce/scene/material_eval.h"
 #include "bounce/scene/mesh.h"
 #include "bounce/scene/texture.h"
 
@@ -50,8 +51,7 @@ struct SceneView {
 
   // Diffuse albedo of a material at a texture coordinate (as Scene::albedo).
   BOUNCE_HD vec3 albedo(const MaterialRecord& material, vec2 uv) const {
-    if (material.albedo_texture < 0) return material.albedo;
-    return material.albedo * textures[material.albedo_texture].sample(uv);
+    return material_at(material, textures, uv).albedo;
   }
   // Global triangle id (as Scene::triangle_offsets numbers them).
   BOUNCE_HD uint32_t triangle_id(uint32_t mesh, uint32_t triangle) const {
