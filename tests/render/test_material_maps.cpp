@@ -169,6 +169,7 @@ TEST(MaterialMaps, AlphaMaskedShadowInTheDirectImage) {
     s->camera.position = vec3(0.0f, 0.4f, 0.0f);  // under the quad: it sees only the floor
     s->camera.look_at = vec3(0.0f);
     s->camera.vfov_deg = 90.0f;
+    s->finalize();
   }
   render_test::Job job("direct", kSize, kSize);
   const Image with_quad = render_test::render(masked, job).color;

@@ -3,6 +3,8 @@
 // image), mirrored mappings included.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "bounce/core/rng.h"
 #include "bounce/render/tangent_frame.h"
 

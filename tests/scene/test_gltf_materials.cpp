@@ -52,6 +52,7 @@ tg::Model quad_model() {
   tg::Material mat;
   mat.name = "textured";
   mat.pbrMetallicRoughness.baseColorFactor = {0.9, 0.5, 0.2, 1.0};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
   m.materials.push_back(mat);
   tg::Node node;
   node.mesh = 0;
@@ -80,7 +81,7 @@ Scene load(const tg::Model& m, const TempDir& dir, const std::string& name,
            std::string* warnings = nullptr) {
   const std::string path = dir.file(name);
   tg::TinyGLTF writer;
-  EXPECT_TRUE(writer.WriteGltfSceneToFile(&m, path, false, false, true, false));
+  EXPECT_TRUE(writer.WriteGltfSceneToFile(&m, path, true, true, true, false));
   testing::internal::CaptureStderr();
   Scene scene = load_scene(path);
   const std::string printed = testing::internal::GetCapturedStderr();
@@ -103,6 +104,8 @@ tg::Value transform_extension(vec2 offset, double rotation, vec2 scale, int tex_
 TEST(GltfMaterials, MetallicRoughnessTextureScalesMetallicAndRoughness) {
   TempDir dir;
   tg::Model m = quad_model();
+  m.materials[0].pbrMetallicRoughness.metallicFactor = 1.0;
+  m.materials[0].pbrMetallicRoughness.roughnessFactor = 1.0;
   m.materials[0].pbrMetallicRoughness.metallicRoughnessTexture.index =
       add_texture(m, dir, "mr.tga", 1, 2, {0, 128, 255, 255, 0, 255, 0, 255});
   const Scene scene = load(m, dir, "mr.gltf");
