@@ -99,6 +99,13 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   if (technique != "direct" && !tiled)
     gpu_fail("--device cuda: technique '" + technique +
              "' does not run on the GPU yet (direct and tiled do)");
+  // The device's BVH copy carries no cut-out data (trace/cutout_view.h): refuse rather than
+  // render masked holes as solid.
+  for (const Material& m : in.scene.materials)
+    if (m.has_cutouts())
+      gpu_fail("--device cuda: material '" + m.name +
+               "' has alpha cut-outs (glTF alphaMode MASK or BLEND), which the GPU does not "
+               "trace yet; render this scene with --device cpu");
   const FrameSettings& settings = in.settings;
   const int w = settings.width, h = settings.height;
   const size_t n = size_t(w) * size_t(h);

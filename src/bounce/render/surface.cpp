@@ -5,7 +5,7 @@ namespace bounce {
 SurfaceHit surface_at(const Scene& scene, const Hit& hit, vec3 direction) {
   const Mesh& mesh = scene.meshes[hit.mesh];
   return surface_on(mesh.view(), scene.materials[mesh.materials[hit.triangle]], hit, direction,
-                    [&](const MaterialRecord& m, vec2 uv) { return scene.albedo(m, uv); });
+                    scene.textures);
 }
 
 }  // namespace bounce

@@ -4,6 +4,8 @@
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/render/surface_hit.h"
+#include "bounce/render/tangent_frame.h"
+#include "bounce/scene/material_eval.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_view.h"
 #include "bounce/trace/ray.h"
@@ -11,11 +13,11 @@
 namespace bounce {
 
 // The surface at a triangle hit on `mesh`, whose material there is `material`, for a ray
-// travelling along `direction`; albedo(material, uv) gives the (textured) diffuse albedo. The one
+// travelling along `direction`; `textures[i].sample(uv)` reads the scene's textures. The one
 // implementation behind both surface_at forms.
-template <typename Albedo>
+template <typename Textures>
 BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& material,
-                                const Hit& hit, vec3 direction, const Albedo& albedo) {
+                                const Hit& hit, vec3 direction, const Textures& textures) {
   const uvec3 tri = mesh.triangles[hit.triangle];
   const float b1 = hit.barycentric.x, b2 = hit.barycentric.y, b0 = 1.0f - b1 - b2;
 
@@ -24,19 +26,33 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   const vec3 face = glm::normalize(mesh.face_normal_area2(hit.triangle));
   const bool front = glm::dot(face, direction) < 0.0f;
   s.geometric_normal = front ? face : -face;
-  s.normal = s.geometric_normal;
+  // The shading normal as the file has it (interpolated, else the face's), turned to the
+  // viewer's side after any normal map: a back face shows the front's perturbation mirrored.
+  vec3 normal = face;
   if (mesh.normals) {
     const vec3 n = b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] + b2 * mesh.normals[tri.z];
     const float len = glm::length(n);
-    // Interpolated normals live on the same side as the face normal we shade from.
-    if (len > 0.0f) s.normal = glm::dot(n, s.geometric_normal) < 0.0f ? -n / len : n / len;
+    if (len > 0.0f) normal = n / len;
   }
   vec2 uv(0.0f);
-  if (mesh.uvs) uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
-  s.albedo = albedo(material, uv);
-  s.f0 = material.f0;
-  s.roughness = material.roughness;
-  s.emission = front ? material.emission : vec3(0.0f);
+  if (mesh.uvs) {
+    uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+    TangentFrame frame;
+    if (material.normal_texture >= 0 &&
+        tangent_frame(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
+                      mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z], normal, frame)) {
+      const vec3 mapped = frame.to_world(tangent_space_normal(material, textures, uv));
+      const float len = glm::length(mapped);
+      if (len > 0.0f) normal = mapped / len;
+    }
+  }
+  // Interpolated normals live on the same side as the face normal we shade from.
+  s.normal = glm::dot(normal, s.geometric_normal) < 0.0f ? -normal : normal;
+  const MaterialPoint m = material_at(material, textures, uv);
+  s.albedo = m.albedo;
+  s.f0 = m.f0;
+  s.roughness = m.roughness;
+  s.emission = front ? m.emission : vec3(0.0f);
   return s;
 }
 
@@ -44,7 +60,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
 BOUNCE_HD inline SurfaceHit surface_at(const SceneView& scene, const Hit& hit, vec3 direction) {
   const MeshView& mesh = scene.meshes[hit.mesh];
   return surface_on(mesh, scene.materials[mesh.materials[hit.triangle]], hit, direction,
-                    [&](const MaterialRecord& m, vec2 uv) { return scene.albedo(m, uv); });
+                    scene.textures);
 }
 SurfaceHit surface_at(const Scene& scene, const Hit& hit, vec3 direction);
 

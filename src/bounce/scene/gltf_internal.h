@@ -34,9 +34,10 @@ struct Context {
   const std::string& path;
   const tg::Model& model;
   Scene& scene;
-  std::vector<int> material_of;   // glTF material -> scene material (-1: not yet converted)
-  int default_material = -1;      // for primitives without a material
-  std::map<int, int> texture_of;  // glTF image -> scene texture (-1: unusable)
+  std::vector<int> material_of;  // glTF material -> scene material (-1: not yet converted)
+  int default_material = -1;     // for primitives without a material
+  // (glTF image, how it is read: gltf_materials.cpp's TextureKind) -> scene texture (-1: none)
+  std::map<std::pair<int, int>, int> texture_of;
   std::set<std::string> ignored;  // unsupported features met, reported once
   std::set<int> skipped_modes;    // primitive modes other than triangles, reported once
   bool camera_found = false;

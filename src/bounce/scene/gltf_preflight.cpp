@@ -68,9 +68,9 @@ bool is_number_key(const std::string& key) {
 }
 
 bool is_number_array_key(const std::string& key) {
-  static const std::set<std::string> kKeys = {"baseColorFactor", "color",    "emissiveFactor",
-                                              "matrix",          "rotation", "specularColorFactor",
-                                              "translation",     "weights"};
+  static const std::set<std::string> kKeys = {
+      "baseColorFactor",     "color",       "emissiveFactor", "matrix",
+      "specularColorFactor", "translation", "weights"};
   return kKeys.count(key) > 0;
 }
 
@@ -120,6 +120,9 @@ void check_types(const json& node, const std::string& pointer, const std::string
       expected = "an integer >= 0";
     else if (key == "scale" && !value.is_number() && !all_numbers(value))
       expected = "a number";
+    // A node's rotation is a quaternion, KHR_texture_transform's an angle.
+    else if (key == "rotation" && !value.is_number() && !all_numbers(value))
+      expected = "a number or an array of numbers";
     else if (is_number_key(key) && !value.is_number())
       expected = "a number";
     else if (is_number_array_key(key) && !all_numbers(value))

@@ -26,7 +26,8 @@ namespace bounce {
 namespace gltf {
 
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular"};
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular",
+    "KHR_texture_transform"};
 
 namespace {
 

@@ -60,8 +60,10 @@ void validate_material(const Scene& s, const Material& m) {
     fail("{}: {} roughness {} is outside [0, 1]", s.source, where, m.roughness);
   if (glm::any(glm::lessThan(m.emission, vec3(0.0f))))
     fail("{}: {} has negative emission", s.source, where);
-  if (m.albedo_texture >= int(s.textures.size()))
-    fail("{}: {} uses texture {} of {}", s.source, where, m.albedo_texture, s.textures.size());
+  for (const int t : {m.albedo_texture, m.metal_rough_texture, m.normal_texture, m.emission_texture,
+                      m.alpha_texture})
+    if (t >= int(s.textures.size()))
+      fail("{}: {} uses texture {} of {}", s.source, where, t, s.textures.size());
 }
 
 void validate_light(const Scene& s, const Light& l, size_t index) {
@@ -193,7 +195,10 @@ void Scene::derive() {
       int& li = light_of_material[m.materials[t]];
       if (li < 0) {
         li = int(area_lights.size());
-        area_lights.push_back({m.name + "/" + mat.name, mat.emission, {}, {}, {}, 0.0f});
+        // A textured emitter emits its mean texel everywhere (material.h).
+        const vec3 radiance =
+            mat.emission * (mat.emission_texture >= 0 ? mat.emission_texture_mean : vec3(1.0f));
+        area_lights.push_back({m.name + "/" + mat.name, radiance, {}, {}, {}, 0.0f});
       }
       AreaLight& al = area_lights[li];
       al.triangles.push_back({mi, t});
@@ -214,7 +219,9 @@ void Scene::append(Scene&& other, const mat4& m) {
   const int texture_base = int(textures.size());
   for (auto& t : other.textures) textures.push_back(std::move(t));
   for (auto& mat : other.materials) {
-    if (mat.albedo_texture >= 0) mat.albedo_texture += texture_base;
+    for (int* t : {&mat.albedo_texture, &mat.metal_rough_texture, &mat.normal_texture,
+                   &mat.emission_texture, &mat.alpha_texture})
+      if (*t >= 0) *t += texture_base;
     materials.push_back(std::move(mat));
   }
   for (auto& mesh : other.meshes) {
@@ -238,8 +245,7 @@ size_t Scene::triangle_count() const {
 }
 
 vec3 Scene::albedo(const MaterialRecord& material, vec2 uv) const {
-  if (material.albedo_texture < 0) return material.albedo;
-  return material.albedo * textures[material.albedo_texture].sample(uv);
+  return material_at(material, textures, uv).albedo;
 }
 
 void Mesh::transform(const mat4& m) {

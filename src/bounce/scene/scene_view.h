@@ -12,6 +12,7 @@
 #include "bounce/scene/environment.h"
 #include "bounce/scene/light.h"
 #include "bounce/scene/material.h"
+#include "bounce/scene/material_eval.h"
 #include "bounce/scene/mesh.h"
 #include "bounce/scene/texture.h"
 
@@ -55,8 +56,7 @@ struct SceneView {
 
   // Diffuse albedo of a material at a texture coordinate (as Scene::albedo).
   BOUNCE_HD vec3 albedo(const MaterialRecord& material, vec2 uv) const {
-    if (material.albedo_texture < 0) return material.albedo;
-    return material.albedo * textures[material.albedo_texture].sample(uv);
+    return material_at(material, textures, uv).albedo;
   }
   // Radiance seen looking along unit direction d past all geometry (0 without an environment).
   BOUNCE_HD vec3 background(vec3 d) const {

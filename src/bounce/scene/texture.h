@@ -1,6 +1,7 @@
 // An RGB texture in linear colour, sampled bilinearly with repeat wrapping.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,25 @@
 #include "bounce/core/math.h"
 
 namespace bounce {
+
+// An affine map of texture coordinates, uv' = (row_u . (u, v, 1), row_v . (u, v, 1)): glTF's
+// KHR_texture_transform, offset * rotation * scale (the extension's matrix).
+struct TextureTransform {
+  vec3 row_u{1.0f, 0.0f, 0.0f};
+  vec3 row_v{0.0f, 1.0f, 0.0f};
+
+  BOUNCE_HD vec2 apply(vec2 uv) const {
+    return {row_u.x * uv.x + row_u.y * uv.y + row_u.z, row_v.x * uv.x + row_v.y * uv.y + row_v.z};
+  }
+  // The extension's offset, rotation (radians) and scale, composed as it defines them.
+  static TextureTransform from(vec2 offset, float rotation, vec2 scale) {
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    TextureTransform t;
+    t.row_u = {c * scale.x, -s * scale.y, offset.x};
+    t.row_v = {s * scale.x, c * scale.y, offset.y};
+    return t;
+  }
+};
 
 // The texels and the lookup, as plain data for kernels; Texture samples through it too.
 struct TextureView {

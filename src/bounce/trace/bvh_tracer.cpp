@@ -1,6 +1,7 @@
 #include "bounce/trace/bvh_tracer.h"
 
 #include "bounce/trace/bvh_traversal.h"
+#include "bounce/trace/cutouts.h"
 
 namespace bounce {
 
@@ -27,17 +28,20 @@ TraceView BvhTracer::view() const {
   v.spheres = spheres_.data();
   v.sphere_count = uint32_t(spheres_.size());
   v.bvh = bvh_.view();
+  v.bvh.cutouts = cutouts_.view();
   return v;
 }
 
 void BvhTracer::rebuild(const Scene& scene) {
   spheres_ = trace_spheres(scene);
   bvh_.build(scene);
+  cutouts_.build(scene);
 }
 
 void BvhTracer::update(const Scene& scene, std::span<const uint32_t> moved_meshes) {
   spheres_ = trace_spheres(scene);
   if (!moved_meshes.empty()) bvh_.refit(scene, moved_meshes);
+  if (!moved_meshes.empty() && !cutouts_.fits(scene)) cutouts_.build(scene);
 }
 
 TracerStats BvhTracer::stats() const {

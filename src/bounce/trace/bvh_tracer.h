@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bounce/trace/bvh.h"
+#include "bounce/trace/cutouts.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -33,6 +34,7 @@ class BvhTracer final : public Tracer {
  private:
   Bvh bvh_;
   std::vector<TraceSphere> spheres_;  // the scene's sphere lights
+  Cutouts cutouts_;                   // alpha-masked holes, carried by view()
 };
 
 }  // namespace bounce

@@ -2,7 +2,8 @@
 // fixed-size stack, the nearer child first, no recursion, containers or exceptions.
 // Semantics are Embree's as our tracer uses it: both faces hit, a hit counts when
 // ray.tmin < t <= ray.tmax, the hit names the mesh and the triangle within it, and its
-// barycentric holds the weights of vertices 1 and 2.
+// barycentric holds the weights of vertices 1 and 2, and a hit in an alpha cut-out's hole does not
+// count (cutout_view.h: the test Embree's filter makes too).
 //
 // Triangles use the watertight test of Woop, Benthin and Wald (2013): vertices are moved into a
 // space where the ray runs along +z from the origin, and the three edge functions decide the hit.
@@ -161,6 +162,9 @@ BOUNCE_HD inline bool traverse(const BvhView& bvh, const Ray& ray, Hit& hit) {
         for (uint32_t k = begin; k < end; ++k) {
           float t, u, v;
           if (!hit_triangle(r, bvh.triangles[k], ray.tmin, tmax, t, u, v)) continue;
+          if (bvh.cutouts.mesh_count > 0 &&
+              bvh.cutouts.passes(bvh.ids[k].mesh, bvh.ids[k].triangle, u, v))
+            continue;  // a hole in an alpha-masked material
           if constexpr (kAnyHit) return true;
           tmax = t;
           best = k;

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "bounce/core/math.h"
+#include "bounce/trace/cutout_view.h"
 
 namespace bounce {
 
@@ -46,6 +47,9 @@ struct BvhView {
   const BvhTriangleId* ids = nullptr;  // parallel to triangles
   uint32_t node_count = 0;             // 0 for a scene without triangles
   uint32_t triangle_count = 0;
+  // Holes in alpha-masked materials that rays pass through; empty where the scene has none (and
+  // in a view that does not carry them: Bvh::view(), the device's copy).
+  CutoutView cutouts;
 };
 static_assert(std::is_trivially_copyable_v<BvhView>);
 

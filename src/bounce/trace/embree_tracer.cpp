@@ -3,6 +3,7 @@
 // (rtcIntersect1/rtcOccluded1, also what kernels call), every span of rays through Embree's stream
 // API (rtcIntersect1M, rtcOccluded1M, flagged coherent or not), which measured faster here than our
 // own 8-wide packets and than single rays (docs/benchmarks.md).
+// Alpha cut-outs are Embree filter functions on the meshes that have them (cutout_view.h).
 // A scene with animated meshes is built two-level (Embree's low scene quality): static meshes
 // keep their own high-quality BVHs and animated ones are refitted when their vertices move.
 #include <embree3/rtcore.h>
@@ -13,6 +14,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/core/timer.h"
+#include "bounce/trace/cutouts.h"
 #include "bounce/trace/tracer.h"
 
 namespace bounce {
@@ -128,6 +130,8 @@ class EmbreeTracer final : public Tracer {
     if (dynamic) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
     rtcSetSceneBuildQuality(scene_, dynamic ? RTC_BUILD_QUALITY_LOW : to_embree(quality_));
     vertex_counts_.assign(scene.meshes.size(), 0);
+    cutouts_.build(scene);
+    cutout_view_ = cutouts_.view();
     for (unsigned id = 0; id < scene.meshes.size(); ++id)
       if (!scene.meshes[id].triangles.empty())
         attach(scene.meshes[id], id, animated[id] ? RTC_BUILD_QUALITY_REFIT : to_embree(quality_));
@@ -144,7 +148,8 @@ class EmbreeTracer final : public Tracer {
     if (moved_meshes.empty()) return;
     for (uint32_t id : moved_meshes) {
       const Mesh& mesh = scene.meshes.at(id);
-      if (id >= vertex_counts_.size() || vertex_counts_[id] != mesh.positions.size()) {
+      if (id >= vertex_counts_.size() || vertex_counts_[id] != mesh.positions.size() ||
+          !cutouts_.fits(scene)) {
         rebuild(scene);  // the topology changed: refitting cannot follow
         return;
       }
@@ -186,9 +191,27 @@ class EmbreeTracer final : public Tracer {
     vertex_counts_[id] = mesh.positions.size();
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
       for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
+    if (id < cutout_view_.mesh_count && cutout_view_.meshes[id].triangles) {
+      // Alpha cut-outs: hits in holes are rejected, so rays go on (closest and any hit alike).
+      rtcSetGeometryUserData(geometry, &cutout_view_);
+      rtcSetGeometryIntersectFilterFunction(geometry, &EmbreeTracer::cutout_filter);
+      rtcSetGeometryOccludedFilterFunction(geometry, &EmbreeTracer::cutout_filter);
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(scene_, geometry, id);
     rtcReleaseGeometry(geometry);
+  }
+
+  // Embree's filter for geometries with cut-outs: the same test as our BVH's traversal.
+  static void cutout_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* cutouts = static_cast<const CutoutView*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] != -1) continue;
+      if (cutouts->passes(RTCHitN_geomID(args->hit, args->N, i),
+                          RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                          RTCHitN_v(args->hit, args->N, i)))
+        args->valid[i] = 0;
+    }
   }
 
   static bool on_memory(void* self, ssize_t bytes, bool) {
@@ -201,6 +224,8 @@ class EmbreeTracer final : public Tracer {
   RTCScene scene_ = nullptr;
   std::vector<size_t> vertex_counts_;  // per mesh, as attached
   std::vector<TraceSphere> spheres_;   // the scene's sphere lights
+  Cutouts cutouts_;                    // alpha-masked holes, read by cutout_filter
+  CutoutView cutout_view_;             // what the filters' user data points at
   std::atomic<ssize_t> memory_{0};
   double build_ms_ = 0.0;
 };

@@ -1,0 +1,78 @@
+// A material at one point of a surface: its textures read at the point's uv. Written once for
+// the host (over Scene::textures) and kernels (over SceneView::textures): `textures[i]` only has
+// to have sample(uv).
+#pragma once
+
+#include "bounce/core/device.h"
+#include "bounce/core/math.h"
+#include "bounce/scene/material.h"
+
+namespace bounce {
+
+struct MaterialPoint {
+  vec3 albedo{0.0f};
+  vec3 f0{0.0f};
+  float roughness = 1.0f;
+  vec3 emission{0.0f};  // front-face emission
+};
+
+template <typename Textures>
+BOUNCE_HD vec3 texture_at(const Textures& textures, int index, const TextureTransform& transform,
+                          vec2 uv) {
+  return textures[index].sample(transform.apply(uv));
+}
+
+template <typename Textures>
+BOUNCE_HD MaterialPoint material_at(const MaterialRecord& m, const Textures& textures, vec2 uv) {
+  MaterialPoint p;
+  const vec3 tint = m.albedo_texture >= 0
+                        ? texture_at(textures, m.albedo_texture, m.albedo_transform, uv)
+                        : vec3(1.0f);
+  p.roughness = m.roughness;
+  if (m.metallic_workflow) {
+    // glTF: the metallic-roughness texture's green scales roughness and its blue metallic; a
+    // metal's base colour is its specular colour, a dielectric's its diffuse albedo.
+    float metallic = m.metallic;
+    if (m.metal_rough_texture >= 0) {
+      const vec3 mr = texture_at(textures, m.metal_rough_texture, m.metal_rough_transform, uv);
+      p.roughness = glm::clamp(p.roughness * mr.y, 0.0f, 1.0f);
+      metallic = glm::clamp(metallic * mr.z, 0.0f, 1.0f);
+    }
+    const vec3 base = m.base_colour * tint;
+    p.albedo = base * (1.0f - metallic);
+    p.f0 = glm::mix(m.dielectric_f0, base, metallic);
+  } else {
+    p.albedo = m.albedo * tint;
+    p.f0 = m.f0;
+  }
+  p.emission = m.emission;
+  if (m.emission_texture >= 0)
+    p.emission *= texture_at(textures, m.emission_texture, m.emission_transform, uv);
+  return p;
+}
+
+// Base colour alpha times the texture's alpha.
+template <typename Textures>
+BOUNCE_HD float material_alpha(const MaterialRecord& m, const Textures& textures, vec2 uv) {
+  if (m.alpha_texture < 0) return m.alpha;
+  return m.alpha * texture_at(textures, m.alpha_texture, m.albedo_transform, uv).x;
+}
+
+// Whether the surface is a hole at uv, where every ray (primary, shadow, photon) passes on.
+template <typename Textures>
+BOUNCE_HD bool cut_away(const MaterialRecord& m, const Textures& textures, vec2 uv) {
+  if (!m.has_cutouts()) return false;
+  const float cutoff = m.alpha_mode == AlphaMode::kMask ? m.alpha_cutoff : 0.5f;
+  return material_alpha(m, textures, uv) < cutoff;
+}
+
+// The normal map's tangent-space normal at uv (unnormalised, normal_scale applied to x and y,
+// as glTF defines it), or (0, 0, 1) without a normal map.
+template <typename Textures>
+BOUNCE_HD vec3 tangent_space_normal(const MaterialRecord& m, const Textures& textures, vec2 uv) {
+  if (m.normal_texture < 0) return vec3(0.0f, 0.0f, 1.0f);
+  const vec3 t = texture_at(textures, m.normal_texture, m.normal_transform, uv) * 2.0f - 1.0f;
+  return vec3(t.x * m.normal_scale, t.y * m.normal_scale, t.z);
+}
+
+}  // namespace bounce
