@@ -3,11 +3,12 @@
 #pragma once
 
 #include <cstdint>
-#include <fstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <stb_image_write.h>
 #include <tiny_gltf.h>
 
 namespace bounce::gltf_build {
@@ -34,22 +35,12 @@ int add_data(tinygltf::Model& m, const std::vector<T>& values, int component_typ
   return int(m.accessors.size() - 1);
 }
 
-// Writes an 8-bit RGBA image (row-major from the top row) as an uncompressed TGA, which the glTF
-// loader's image decoder reads like a PNG: a texture with an alpha channel, written by hand.
-inline void write_tga_rgba(const std::string& path, int width, int height,
+// Writes an 8-bit RGBA image (row-major from the top row) as a PNG: a texture with an alpha
+// channel. PNG, because tinygltf's writer keeps a relative uri only for PNG and JPEG images.
+inline void write_png_rgba(const std::string& path, int width, int height,
                            const std::vector<unsigned char>& rgba) {
-  std::vector<unsigned char> out(18, 0);
-  out[2] = 2;  // uncompressed true colour
-  out[12] = uint8_t(width & 255);
-  out[13] = uint8_t(width >> 8);
-  out[14] = uint8_t(height & 255);
-  out[15] = uint8_t(height >> 8);
-  out[16] = 32;        // bits per pixel
-  out[17] = 0x20 | 8;  // top-left origin, 8 alpha bits
-  for (size_t p = 0; p + 3 < rgba.size(); p += 4)
-    out.insert(out.end(), {rgba[p + 2], rgba[p + 1], rgba[p], rgba[p + 3]});  // BGRA
-  std::ofstream(path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
+  if (!stbi_write_png(path.c_str(), width, height, 4, rgba.data(), width * 4))
+    throw std::runtime_error("cannot write " + path);
 }
 
 inline tinygltf::Value object(

@@ -20,7 +20,7 @@ namespace {
 namespace tg = tinygltf;
 using gltf_build::add_data;
 using gltf_build::object;
-using gltf_build::write_tga_rgba;
+using gltf_build::write_png_rgba;
 using scene_test::contains;
 using scene_test::expect_near;
 using scene_test::TempDir;
@@ -66,7 +66,7 @@ tg::Model quad_model() {
 // Writes an RGBA image next to the model and adds it as a texture; returns the texture index.
 int add_texture(tg::Model& m, const TempDir& dir, const std::string& name, int width, int height,
                 const std::vector<unsigned char>& rgba) {
-  write_tga_rgba(dir.file(name), width, height, rgba);
+  write_png_rgba(dir.file(name), width, height, rgba);
   tg::Image image;
   image.uri = name;
   m.images.push_back(image);
@@ -107,7 +107,7 @@ TEST(GltfMaterials, MetallicRoughnessTextureScalesMetallicAndRoughness) {
   m.materials[0].pbrMetallicRoughness.metallicFactor = 1.0;
   m.materials[0].pbrMetallicRoughness.roughnessFactor = 1.0;
   m.materials[0].pbrMetallicRoughness.metallicRoughnessTexture.index =
-      add_texture(m, dir, "mr.tga", 1, 2, {0, 128, 255, 255, 0, 255, 0, 255});
+      add_texture(m, dir, "mr.png", 1, 2, {0, 128, 255, 255, 0, 255, 0, 255});
   const Scene scene = load(m, dir, "mr.gltf");
   const Material& mat = scene.materials[0];
   ASSERT_GE(mat.metal_rough_texture, 0);
@@ -157,7 +157,7 @@ TEST(GltfMaterials, TextureTransformMapsKnownTexels) {
     tg::Model m = quad_model();
     m.materials[0].pbrMetallicRoughness.baseColorFactor = {1, 1, 1, 1};
     tg::TextureInfo& info = m.materials[0].pbrMetallicRoughness.baseColorTexture;
-    info.index = add_texture(m, dir, "quadrants.tga", 2, 2, quadrants);
+    info.index = add_texture(m, dir, "quadrants.png", 2, 2, quadrants);
     info.extensions["KHR_texture_transform"] = c.extension;
     m.extensionsUsed.push_back("KHR_texture_transform");
     std::string warnings;
@@ -174,7 +174,7 @@ TEST(GltfMaterials, TextureTransformTexCoordOverride) {
     TempDir dir;
     tg::Model m = quad_model();
     tg::TextureInfo& info = m.materials[0].pbrMetallicRoughness.baseColorTexture;
-    info.index = add_texture(m, dir, "white.tga", 1, 1, {255, 255, 255, 255});
+    info.index = add_texture(m, dir, "white.png", 1, 1, {255, 255, 255, 255});
     info.texCoord = 1 - set;
     info.extensions["KHR_texture_transform"] = transform_extension({0, 0}, 0.0, {1, 1}, set);
     std::string warnings;
@@ -190,7 +190,7 @@ TEST(GltfMaterials, EmissiveTextureTimesFactor) {
   tg::Model m = quad_model();
   m.materials[0].emissiveFactor = {1.0, 0.5, 0.25};
   m.materials[0].emissiveTexture.index =
-      add_texture(m, dir, "glow.tga", 1, 2, {255, 255, 255, 255, 0, 0, 0, 255});
+      add_texture(m, dir, "glow.png", 1, 2, {255, 255, 255, 255, 0, 0, 0, 255});
   std::string warnings;
   const Scene scene = load(m, dir, "glow.gltf", &warnings);
   EXPECT_FALSE(contains(warnings, "emissive")) << warnings;
@@ -223,7 +223,7 @@ TEST(GltfMaterials, AlphaModesCutWhereAlphaIsBelowTheCutoff) {
     m.materials[0].alphaCutoff = c.cutoff;
     m.materials[0].pbrMetallicRoughness.baseColorFactor = {1, 1, 1, 0.8};
     m.materials[0].pbrMetallicRoughness.baseColorTexture.index =
-        add_texture(m, dir, "leaf.tga", 2, 1, {10, 200, 10, 255, 10, 200, 10, 102});
+        add_texture(m, dir, "leaf.png", 2, 1, {10, 200, 10, 255, 10, 200, 10, 102});
     std::string warnings;
     const Scene scene = load(m, dir, "leaf.gltf", &warnings);
     EXPECT_FALSE(contains(warnings, "alpha")) << warnings;
@@ -244,7 +244,7 @@ TEST(GltfMaterials, SupportedFeaturesLoadWithoutWarnings) {
   TempDir dir;
   tg::Model m = quad_model();
   tg::Material& mat = m.materials[0];
-  const int tex = add_texture(m, dir, "all.tga", 1, 1, {128, 128, 255, 200});
+  const int tex = add_texture(m, dir, "all.png", 1, 1, {128, 128, 255, 200});
   mat.pbrMetallicRoughness.baseColorTexture.index = tex;
   mat.pbrMetallicRoughness.metallicRoughnessTexture.index = tex;
   mat.normalTexture.index = tex;

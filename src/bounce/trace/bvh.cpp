@@ -336,8 +336,8 @@ bool Bvh::refit(const Scene& scene, std::span<const uint32_t> moved_meshes) {
 }
 
 BvhView Bvh::view() const {
-  return {nodes_.data(), triangles_.data(), ids_.data(), uint32_t(nodes_.size()),
-          uint32_t(triangles_.size())};
+  return {nodes_.data(),           triangles_.data(),           ids_.data(),
+          uint32_t(nodes_.size()), uint32_t(triangles_.size()), CutoutView{}};
 }
 
 size_t Bvh::memory_bytes() const {
