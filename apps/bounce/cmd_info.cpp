@@ -57,8 +57,8 @@ void print_quake_stats(const quake::QuakeStats& s) {
   fmt::print("map patches {} Bezier patches, {} triangles\n", s.patches, s.patch_triangles);
   fmt::print("map lights  {} point, {} spot, {} sun; {} glowing shaders\n", s.point_lights,
              s.spot_lights, s.suns, s.surface_light_shaders);
-  fmt::print("map images  {} found, {} missing, from {} archives ({} shaders)\n", s.textures,
-             s.textures_missing, s.archives, s.shaders);
+  fmt::print("map images  {} found, {} missing, from {} archives ({} shaders, {} alpha-tested)\n",
+             s.textures, s.textures_missing, s.archives, s.shaders, s.cutout_shaders);
   fmt::print("map spawns  {}\n", s.spawn_points);
 }
 

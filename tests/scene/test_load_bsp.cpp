@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "bounce/scene/load.h"
+#include "bounce/scene/material_eval.h"
 #include "bounce/scene/quake/bsp.h"
 #include "bounce/scene/quake/load_quake.h"
 #include "bounce/scene/quake/units.h"
@@ -195,6 +196,59 @@ TEST(LoadBsp, MapInAnArchiveFindsItsTgaTextureAndLoadsFromASceneFile) {
       dir.write("missing.bounce.json", R"({"models": [{"file": "maps.pk3:maps/other.bsp"}]})");
   const std::string e2 = error_of([&] { load_scene(missing); });
   EXPECT_TRUE(contains(e2, "no entry 'maps/other.bsp'")) << e2;
+}
+
+// A 2 x 1 uncompressed 32-bit TGA: an opaque white texel, then a white texel of alpha `alpha`.
+std::string tga_with_alpha(unsigned char alpha) {
+  std::string t(18, '\0');
+  t[2] = 2;
+  t[12] = 2;
+  t[14] = 1;
+  t[16] = 32;
+  t[17] = 0x20 | 8;  // rows top first, 8 alpha bits
+  const unsigned char bgra[8] = {255, 255, 255, 255, 255, 255, 255, alpha};
+  t.append(reinterpret_cast<const char*>(bgra), 8);
+  return t;
+}
+
+// A shader stage's alphaFunc makes the surface a cut-out on its image's alpha: GE128 keeps alpha
+// from 128/255, GT0 anything above 0; LT128 (which a cut-off cannot express) stays opaque.
+TEST(LoadBsp, AlphaFuncShadersBecomeCutouts) {
+  struct Case {
+    const char* func;
+    unsigned char alpha;  // of the right-hand texel
+    bool has_cutout, right_is_hole;
+  };
+  for (const Case c :
+       {Case{"GE128", 127, true, true}, Case{"GE128", 128, true, false}, Case{"GT0", 0, true, true},
+        Case{"GT0", 1, true, false}, Case{"LT128", 0, false, false}}) {
+    TempDir dir;
+    dir.write("maps.pk3", stored_zip({{"maps/room.bsp", BspBuild::floor().bytes()}}));
+    const std::string shader = fmt::format(
+        "textures/test/floor\n{{\n  {{\n    map textures/test/floor.tga\n    alphaFunc {}\n  "
+        "}}\n}}\n",
+        c.func);
+    dir.write("textures.pk3", stored_zip({{"textures/test/floor.tga", tga_with_alpha(c.alpha)},
+                                          {"scripts/test.shader", shader}}));
+    testing::internal::CaptureStderr();
+    const Scene scene = load_scene(dir.file("maps.pk3") + ":maps/room.bsp");
+    const std::string warnings = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(scene.materials.size(), 1u) << c.func;
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.has_cutouts(), c.has_cutout) << c.func;
+    if (!c.has_cutout) {
+      EXPECT_TRUE(contains(warnings, "alphaFunc LT128")) << warnings;
+      continue;
+    }
+    ASSERT_GE(m.alpha_texture, 0);
+    std::vector<TextureView> views;
+    for (const Texture& t : scene.textures) views.push_back(t.view());
+    const MaterialRecord record = m;
+    // Texel centres: u = 0.25 is the opaque texel, u = 0.75 the other.
+    EXPECT_FALSE(cut_away(record, views.data(), vec2(0.25f, 0.5f))) << c.func;
+    EXPECT_EQ(cut_away(record, views.data(), vec2(0.75f, 0.5f)), c.right_is_hole)
+        << c.func << " alpha " << int(c.alpha);
+  }
 }
 
 // --- Malformed files: each error names the file and the lump.

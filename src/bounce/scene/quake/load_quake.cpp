@@ -90,7 +90,10 @@ struct Builder {
     mat.name = name;
     mat.albedo = kMissingGrey;
     SurfaceImage image;
-    if (archives) image = find_surface_image(*archives, s, name, options.max_texture_size);
+    const bool alpha_tested = s && s->alpha_test != AlphaTest::kNone;
+    if (archives)
+      image = find_surface_image(*archives, s, name, options.max_texture_size, alpha_tested);
+    if (image.found && alpha_tested) add_cutout(mat, *s, std::move(image.alpha));
     if (image.found) {
       if (options.full_textures) {
         mat.albedo = vec3(1.0f);
@@ -118,6 +121,25 @@ struct Builder {
     m = int(scene.materials.size());
     scene.materials.push_back(std::move(mat));
     return uint32_t(m);
+  }
+
+  // An alphaFunc stage's holes as a glTF-style MASK cut-out on the image's alpha (the grates and
+  // foliage every ray passes through). LT128 keeps the texels GE128 drops, which a cut-off
+  // below which alpha is a hole cannot say; no OpenArena shader uses it, so it stays opaque.
+  void add_cutout(Material& mat, const ShaderInfo& s, Texture alpha) {
+    if (alpha.texels.empty()) return;  // an image without alpha: nothing is cut away
+    if (s.alpha_test == AlphaTest::kBelowHalf) {
+      warn(fmt::format("{}: shader '{}': alphaFunc LT128 is not supported; the surface is opaque",
+                       scene.source, mat.name));
+      return;
+    }
+    mat.alpha_mode = AlphaMode::kMask;
+    // GT0 keeps alpha > 0, GE128 keeps alpha >= 128/255; below the cut-off is a hole.
+    mat.alpha_cutoff =
+        s.alpha_test == AlphaTest::kGreaterThanZero ? 0.5f / 255.0f : 128.0f / 255.0f;
+    mat.alpha_texture = int(scene.textures.size());
+    scene.textures.push_back(std::move(alpha));
+    ++stats.cutout_shaders;
   }
 
   void add_vertex(Mesh& mesh, vec3 position, vec3 normal, vec3 fallback_normal, vec2 uv) {

@@ -38,6 +38,7 @@ struct QuakeStats {
   size_t point_lights = 0, spot_lights = 0, suns = 0, surface_light_shaders = 0;
   size_t spawn_points = 0;
   size_t textures = 0, textures_missing = 0, shaders = 0;
+  size_t cutout_shaders = 0;  // alphaFunc surfaces (grates, foliage) read as alpha cut-outs
   size_t archives = 0;
 };
 

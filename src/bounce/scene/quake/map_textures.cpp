@@ -43,12 +43,14 @@ struct StbFree {
   void operator()(unsigned char* p) const { stbi_image_free(p); }
 };
 
-// Decodes a .tga or .jpg held in memory to linear RGB (the images are sRGB); throws Error.
-void decode(const std::string& name, const std::vector<uint8_t>& bytes, Texture& out) {
+// Decodes a .tga or .jpg held in memory to linear RGB (the images are sRGB) and, when `alpha` is
+// given and the image has an alpha channel, its alpha (linear, in every channel); throws Error.
+void decode(const std::string& name, const std::vector<uint8_t>& bytes, Texture& out,
+            Texture* alpha) {
   if (bytes.size() > size_t(INT32_MAX)) fail("{}: the image is too large", name);
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<unsigned char, StbFree> pixels(
-      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3));
+      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4));
   if (!pixels) {
     const char* reason = stbi_failure_reason();
     fail("{}: corrupt or unsupported image{}", name,
@@ -67,18 +69,32 @@ void decode(const std::string& name, const std::vector<uint8_t>& bytes, Texture&
   const unsigned char* p = pixels.get();
   for (vec3& t : out.texels) {
     t = vec3(to_linear[p[0]], to_linear[p[1]], to_linear[p[2]]);
-    p += 3;
+    p += 4;
+  }
+  if (!alpha || (channels != 2 && channels != 4)) return;
+  alpha->width = w;
+  alpha->height = h;
+  alpha->texels.resize(out.texels.size());
+  p = pixels.get() + 3;
+  for (vec3& t : alpha->texels) {
+    t = vec3(float(*p) / 255.0f);
+    p += 4;
   }
 }
 
-bool try_load(const Pk3Set& archives, const std::string& entry, int max_size, SurfaceImage& out) {
+bool try_load(const Pk3Set& archives, const std::string& entry, int max_size, bool with_alpha,
+              SurfaceImage& out) {
   const Pk3Archive* a = archives.find(entry);
   if (!a) return false;
   try {
     const std::vector<uint8_t> bytes = a->read(entry);
-    decode(a->path() + ":" + entry, bytes, out.texture);
+    decode(a->path() + ":" + entry, bytes, out.texture, with_alpha ? &out.alpha : nullptr);
     out.texture.name = entry;
     shrink_texture(out.texture, max_size);
+    if (!out.alpha.texels.empty()) {
+      out.alpha.name = entry + " (alpha)";
+      shrink_texture(out.alpha, max_size);
+    }
     vec3 sum(0.0f);
     for (const vec3& t : out.texture.texels) sum += t;
     out.average = sum / float(std::max<size_t>(out.texture.texels.size(), 1));
@@ -114,7 +130,7 @@ ShaderTable read_shaders(const Pk3Set& archives, size_t* script_count) {
 }
 
 SurfaceImage find_surface_image(const Pk3Set& archives, const ShaderInfo* shader,
-                                const std::string& name, int max_size) {
+                                const std::string& name, int max_size, bool with_alpha) {
   SurfaceImage out;
   std::vector<std::string> images;
   if (shader && !shader->image.empty()) images.push_back(shader->image);
@@ -122,7 +138,7 @@ SurfaceImage find_surface_image(const Pk3Set& archives, const ShaderInfo* shader
   if (shader && !shader->editor_image.empty()) images.push_back(shader->editor_image);
   for (const auto& image : images)
     for (const auto& entry : candidates(image))
-      if (try_load(archives, entry, max_size, out)) return out;
+      if (try_load(archives, entry, max_size, with_alpha, out)) return out;
   return out;
 }
 

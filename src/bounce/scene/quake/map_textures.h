@@ -15,6 +15,7 @@ namespace bounce::quake {
 struct SurfaceImage {
   bool found = false;
   Texture texture;     // linear RGB, at most max_size texels on a side
+  Texture alpha;       // the alpha channel in every channel, when asked for and the image has one
   vec3 average{0.5f};  // the texels' mean (grey when not found)
   std::string source;  // archive entry it came from
 };
@@ -23,9 +24,9 @@ struct SurfaceImage {
 ShaderTable read_shaders(const Pk3Set& archives, size_t* script_count);
 
 // The image of texture `name` (no extension), or found = false. Unreadable images are a
-// warning, not an error: the surface is then grey.
+// warning, not an error: the surface is then grey. `with_alpha` also keeps the alpha channel.
 SurfaceImage find_surface_image(const Pk3Set& archives, const ShaderInfo* shader,
-                                const std::string& name, int max_size);
+                                const std::string& name, int max_size, bool with_alpha = false);
 
 // Halves a texture (2 x 2 box filter) until neither side exceeds max_size.
 void shrink_texture(Texture& t, int max_size);

@@ -93,7 +93,16 @@ bool is_additive(const std::vector<std::string>& args) {
   return args.size() >= 2 && a == "gl_one" && lower(args[1]) == "gl_one";
 }
 
-// Reads one stage block (after its '{'): the image and whether it blends additively.
+AlphaTest alpha_test(const std::vector<std::string>& args) {
+  const std::string a = args.empty() ? std::string() : lower(args[0]);
+  if (a == "gt0") return AlphaTest::kGreaterThanZero;
+  if (a == "ge128") return AlphaTest::kAtLeastHalf;
+  if (a == "lt128") return AlphaTest::kBelowHalf;
+  return AlphaTest::kNone;
+}
+
+// Reads one stage block (after its '{'): the image, whether it blends additively and its alpha
+// test.
 void read_stage(Tokens& t, ShaderInfo& info, bool* additive, const std::string& file) {
   bool new_line = false;
   for (;;) {
@@ -108,6 +117,8 @@ void read_stage(Tokens& t, ShaderInfo& info, bool* additive, const std::string& 
       info.image = args[0];
     if (key == "animmap" && args.size() >= 2 && info.image.empty()) info.image = args[1];
     if (key == "blendfunc") *additive = is_additive(args);
+    if (key == "alphafunc" && info.alpha_test == AlphaTest::kNone)
+      info.alpha_test = alpha_test(args);
   }
 }
 

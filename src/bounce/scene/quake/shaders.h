@@ -18,6 +18,14 @@ struct Sun {
   float azimuth_deg = 0.0f, elevation_deg = 0.0f;
 };
 
+// A stage's alphaFunc: which texels of its image are drawn (the others are holes).
+enum class AlphaTest : uint8_t {
+  kNone,
+  kGreaterThanZero,  // GT0
+  kAtLeastHalf,      // GE128
+  kBelowHalf,        // LT128: the inverse of GE128, which cut-outs cannot express
+};
+
 struct ShaderInfo {
   std::string image;         // the first stage's map / clampMap / animMap image, if any
   std::string editor_image;  // qer_editorimage: the editor's preview, a fallback
@@ -28,6 +36,7 @@ struct ShaderInfo {
   int stages = 0;         // rendering stages ({ ... } blocks)
   bool decal = false;     // polygonOffset: drawn over another surface
   bool additive = false;  // every stage adds to what is behind it: a glow, not matter
+  AlphaTest alpha_test = AlphaTest::kNone;  // the first stage's with an alphaFunc
 };
 
 // Shader name (lower case) -> what it says.
