@@ -85,6 +85,39 @@ TEST(LayeredHitBuffers, QuadAlongItsAxisIsHitAtItsDistanceFromTheFrontOnly) {
   EXPECT_EQ(lhb.stats().static_elements * 2, both.stats().static_elements);
 }
 
+// An alpha cut-out leaves holes in the buffers: the nearer quad's right half (alpha 0) lets
+// rays through to the quad behind it, as Embree's intersection filter does for traced rays.
+TEST(LayeredHitBuffers, AlphaMaskedHolesLeaveNoElements) {
+  Scene s = stacked_quads(2);
+  Material masked;
+  masked.alpha_mode = AlphaMode::kMask;
+  masked.alpha_texture = 0;
+  s.materials.push_back(masked);
+  Texture alpha;
+  alpha.width = 2;
+  alpha.height = 1;
+  alpha.texels = {vec3(1.0f), vec3(0.0f)};
+  s.textures.push_back(alpha);
+  Mesh& front = s.meshes[0];
+  for (const vec3& p : front.positions) front.uvs.push_back({p.x, p.y});
+  std::fill(front.materials.begin(), front.materials.end(), 1u);
+  s.finalize();
+
+  const std::vector<vec3> dirs = {vec3(0, 0, 1)};
+  LayeredHitBuffers lhb;
+  lhb.build(s, dirs, {.size = 32, .layers = 4});
+  const auto embree = make_embree_tracer(s);
+  for (const float x : {0.1f, 0.3f, 0.7f, 0.9f}) {
+    const Ray ray{vec3(x, 0.5f, -0.5f), 0.0f, dirs[0]};
+    const Hit hit = lhb.closest_hit(ray, 0), traced = embree->intersect(ray);
+    ASSERT_TRUE(hit.valid()) << x;
+    ASSERT_TRUE(traced.valid()) << x;
+    EXPECT_EQ(hit.mesh, x < 0.5f ? 0u : 1u) << x;
+    EXPECT_EQ(traced.mesh, hit.mesh) << x;
+    EXPECT_NEAR(hit.t, x < 0.5f ? 1.5f : 2.5f, 1e-5f) << x;
+  }
+}
+
 TEST(LayeredHitBuffers, JitterMovesTheProjectedPositionAcrossTheDirection) {
   const Scene s = stacked_quads(1);
   const std::vector<vec3> dirs = {glm::normalize(vec3(0.2f, -0.1f, 1.0f))};

@@ -23,6 +23,7 @@
 #include "bounce/core/math.h"
 #include "bounce/scene/mesh.h"
 #include "bounce/techniques/lhb/lhb_view.h"
+#include "bounce/trace/cutout_view.h"
 
 namespace bounce {
 
@@ -66,10 +67,14 @@ struct LhbPlane {
 
 // Rasterizes triangle (p0, p1, p2) with id `prim` into direction frame f's texels.
 // With cull_back_faces only triangles a ray along f.d meets from the front are kept (the seed's
-// rule: each direction answers rays travelling along it).
+// rule: each direction answers rays travelling along it). Texel centres that fall in a hole of
+// an alpha cut-out (`triangle` of scene mesh `mesh` in `cutouts`) record nothing, so rays through
+// the buffers pass holes as traced rays do.
 BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, vec3 p1, vec3 p2,
                                           uint32_t prim, bool cull_back_faces,
-                                          const LhbSlabOut& out, LhbRasterStats& stats) {
+                                          const CutoutView& cutouts, uint32_t mesh,
+                                          uint32_t triangle, const LhbSlabOut& out,
+                                          LhbRasterStats& stats) {
   const float facing = glm::dot(glm::cross(p1 - p0, p2 - p0), f.d);
   if (cull_back_faces ? !(facing < 0.0f) : !(facing != 0.0f)) return;
   const vec2 a = f.texel_coords(p0), b = f.texel_coords(p1), c = f.texel_coords(p2);
@@ -98,7 +103,11 @@ BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, 
                        l1.gx * (zb - za) + l2.gx * (zc - za),
                        l1.gy * (zb - za) + l2.gy * (zc - za)};
   // Texel (x, y) of the slab is at index y * size + x; the planes count from (x0, y0).
+  const bool alpha_tested = cutouts.mesh_count > 0;
   auto emit = [&](int x, int y) {
+    if (alpha_tested &&
+        cutouts.passes(mesh, triangle, l1.at(x - x0, y - y0), l2.at(x - x0, y - y0)))
+      return;
     const size_t texel = size_t(y) * size_t(size) + size_t(x);
     lhb_insert(out.elements + texel * size_t(out.layers), out.counts[texel], out.layers,
                {depth.at(x - x0, y - y0), prim}, stats);
@@ -142,14 +151,15 @@ BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, 
     }
 }
 
-// Every triangle of one mesh into one direction; triangle ids start at first_prim.
+// Every triangle of scene mesh `mesh_index` into one direction; triangle ids start at first_prim.
 BOUNCE_HD inline void lhb_raster_mesh(const LhbFrame& f, int size, const MeshView& mesh,
-                                      uint32_t first_prim, bool cull_back_faces,
+                                      uint32_t mesh_index, uint32_t first_prim,
+                                      bool cull_back_faces, const CutoutView& cutouts,
                                       const LhbSlabOut& out, LhbRasterStats& stats) {
   for (uint32_t t = 0; t < mesh.triangle_count; ++t) {
     const uvec3 i = mesh.triangles[t];
     lhb_raster_triangle(f, size, mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z],
-                        first_prim + t, cull_back_faces, out, stats);
+                        first_prim + t, cull_back_faces, cutouts, mesh_index, t, out, stats);
   }
 }
 

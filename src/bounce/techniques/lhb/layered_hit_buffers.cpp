@@ -9,6 +9,7 @@
 #include "bounce/core/timer.h"
 #include "bounce/techniques/lhb/deep_raster_kernels.h"
 #include "bounce/techniques/lhb/lhb_query.h"
+#include "bounce/trace/cutouts.h"
 
 namespace bounce {
 namespace {
@@ -117,6 +118,9 @@ void LayeredHitBuffers::rasterize(const Scene& scene, std::span<const uint32_t> 
   const size_t per_direction = size_t(settings_.size) * size_t(settings_.size);
   std::vector<MeshView> views;
   std::vector<uint32_t> first_prim;
+  Cutouts cutouts;  // alpha-masked holes leave no element
+  if (has_cutouts(scene)) cutouts.build(scene);
+  const CutoutView cutout_view = cutouts.view();
   slab.triangles = 0;
   for (uint32_t m : meshes) {
     views.push_back(scene.meshes[m].view());
@@ -135,8 +139,8 @@ void LayeredHitBuffers::rasterize(const Scene& scene, std::span<const uint32_t> 
         std::memset(out.counts, 0, per_direction);
         LhbRasterStats stats;
         for (size_t k = 0; k < views.size(); ++k)
-          lhb_raster_mesh(frames_[d], settings_.size, views[k], first_prim[k],
-                          settings_.cull_back_faces, out, stats);
+          lhb_raster_mesh(frames_[d], settings_.size, views[k], meshes[k], first_prim[k],
+                          settings_.cull_back_faces, cutout_view, out, stats);
         uint64_t full = 0;
         for (size_t t = 0; t < per_direction; ++t) full += out.counts[t] > slab.layers;
         per_direction_stats[d] = stats;
