@@ -9,11 +9,22 @@ namespace bounce {
 // One direction per block, as the CPU runs one direction per task.
 __global__ void check_lhb_raster(const LhbFrame* frames, int size, MeshView mesh,
                                  uint32_t mesh_index, uint32_t first_prim, CutoutView cutouts,
-                                 LhbSlabOut out, LhbRasterStats* stats) {
+                                 LhbProjected* scratch, LhbSlabOut out, LhbRasterStats* stats) {
   if (threadIdx.x != 0) return;
   LhbRasterStats s;
-  lhb_raster_mesh(frames[blockIdx.x], size, mesh, mesh_index, first_prim, true, cutouts, out, s);
+  lhb_raster_mesh(frames[blockIdx.x], size, mesh, mesh_index, first_prim, true, cutouts,
+                  scratch + size_t(blockIdx.x) * mesh.vertex_count, out, s);
   stats[blockIdx.x] = s;
+}
+
+// One thread per (triangle, direction) pair, the seed's layout (with atomics on a real launch).
+__global__ void check_lhb_triangle(LhbFrame f, int size, MeshView mesh, CutoutView cutouts,
+                                   LhbSlabOut out, LhbRasterStats* stats) {
+  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= mesh.triangle_count) return;
+  const uvec3 i = mesh.triangles[t];
+  lhb_raster_triangle(f, size, mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z], t,
+                      true, cutouts, 0, t, out, stats[t]);
 }
 
 __global__ void check_lhb_pixel(LhbScene ls, LhbGatherSettings settings, ConstGBufferView g,

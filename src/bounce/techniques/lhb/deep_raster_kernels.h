@@ -65,32 +65,64 @@ struct LhbPlane {
   BOUNCE_HD float at(int x, int y) const { return base + gx * float(x) + gy * float(y); }
 };
 
-// Rasterizes triangle (p0, p1, p2) with id `prim` into direction frame f's texels.
-// With cull_back_faces only triangles a ray along f.d meets from the front are kept (the seed's
-// rule: each direction answers rays travelling along it). Texel centres that fall in a hole of
-// an alpha cut-out (`triangle` of scene mesh `mesh` in `cutouts`) record nothing, so rays through
-// the buffers pass holes as traced rays do.
-BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, vec3 p1, vec3 p2,
-                                          uint32_t prim, bool cull_back_faces,
-                                          const CutoutView& cutouts, uint32_t mesh,
-                                          uint32_t triangle, const LhbSlabOut& out,
-                                          LhbRasterStats& stats) {
-  const float facing = glm::dot(glm::cross(p1 - p0, p2 - p0), f.d);
-  if (cull_back_faces ? !(facing < 0.0f) : !(facing != 0.0f)) return;
-  const vec2 a = f.texel_coords(p0), b = f.texel_coords(p1), c = f.texel_coords(p2);
-  const float za = f.depth(p0), zb = f.depth(p1), zc = f.depth(p2);
-  const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  if (!(area != 0.0f) || !std::isfinite(area)) return;
-  // Texels whose centres (x + 0.5, y + 0.5) lie in the bounding box, slightly widened.
+// A vertex seen along a buffer's direction: texel coordinates and depth. Projected once per
+// vertex and direction, shared by the triangles around it.
+struct LhbProjected {
+  vec2 texel;
+  float depth;
+};
+
+BOUNCE_HD inline LhbProjected lhb_project(const LhbFrame& f, vec3 p) {
+  return {f.texel_coords(p), f.depth(p)};
+}
+
+// The sign that turns a triangle's signed area in f's texel coordinates into the sign of
+// dot(its normal, f.d): +1 when u x v = d, -1 when u x v = -d (the scales are positive).
+BOUNCE_HD inline float lhb_area_to_facing(const LhbFrame& f) {
+  return glm::dot(glm::cross(f.u, f.v), f.d) < 0.0f ? -1.0f : 1.0f;
+}
+
+// Rasterizes the projected triangle (a, b, c) with id `prim` into one direction's texels.
+// With cull_back_faces only triangles a ray along the direction meets from the front are kept
+// (the seed's rule: each direction answers rays travelling along it); `area_to_facing` comes from
+// lhb_area_to_facing. Texel centres that fall in a hole of an alpha cut-out (`triangle` of scene
+// mesh `mesh` in `cutouts`) record nothing, so rays through the buffers pass holes as traced rays
+// do. The box of texel centres is found first: most triangles of a dense mesh cover no centre
+// and leave before any other work.
+BOUNCE_HD inline void lhb_raster_projected(int size, LhbProjected pa, LhbProjected pb,
+                                           LhbProjected pc, float area_to_facing, uint32_t prim,
+                                           bool cull_back_faces, const CutoutView& cutouts,
+                                           uint32_t mesh, uint32_t triangle, const LhbSlabOut& out,
+                                           LhbRasterStats& stats) {
+  const vec2 a = pa.texel, b = pb.texel, c = pc.texel;
+  // Texels whose centres (x + 0.5, y + 0.5) lie in the bounding box, slightly widened. Plain
+  // comparisons, not fminf/fmaxf: those are library calls on the CPU (NaN rules), and this test
+  // is most of the work for a dense mesh.
+  const auto lo3 = [](float p, float q, float r) {
+    const float m = p < q ? p : q;
+    return m < r ? m : r;
+  };
+  const auto hi3 = [](float p, float q, float r) {
+    const float m = p > q ? p : q;
+    return m > r ? m : r;
+  };
   const float slack = 1e-3f;
-  const float lo_x = fminf(a.x, fminf(b.x, c.x)) - 0.5f - slack;
-  const float hi_x = fmaxf(a.x, fmaxf(b.x, c.x)) - 0.5f + slack;
-  const float lo_y = fminf(a.y, fminf(b.y, c.y)) - 0.5f - slack;
-  const float hi_y = fmaxf(a.y, fmaxf(b.y, c.y)) - 0.5f + slack;
-  const int x0 = int(fmaxf(std::ceil(lo_x), 0.0f)), y0 = int(fmaxf(std::ceil(lo_y), 0.0f));
-  const int x1 = int(fminf(std::floor(hi_x), float(size - 1)));
-  const int y1 = int(fminf(std::floor(hi_y), float(size - 1)));
-  if (x0 > x1 || y0 > y1) return;
+  const float lo_x = std::ceil(lo3(a.x, b.x, c.x) - 0.5f - slack);
+  const float hi_x = std::floor(hi3(a.x, b.x, c.x) - 0.5f + slack);
+  const float lo_y = std::ceil(lo3(a.y, b.y, c.y) - 0.5f - slack);
+  const float hi_y = std::floor(hi3(a.y, b.y, c.y) - 0.5f + slack);
+  // Also false for NaN coordinates.
+  if (!(lo_x <= hi_x && lo_y <= hi_y && hi_x >= 0.0f && hi_y >= 0.0f && lo_x <= float(size - 1) &&
+        lo_y <= float(size - 1)))
+    return;
+  const int x0 = lo_x > 0.0f ? int(lo_x) : 0, y0 = lo_y > 0.0f ? int(lo_y) : 0;
+  const int x1 = hi_x < float(size - 1) ? int(hi_x) : size - 1;
+  const int y1 = hi_y < float(size - 1) ? int(hi_y) : size - 1;
+  const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  const float facing = area * area_to_facing;
+  if (cull_back_faces ? !(facing < 0.0f) : !(facing != 0.0f)) return;
+  if (!std::isfinite(area)) return;
+  const float za = pa.depth, zb = pb.depth, zc = pc.depth;
 
   // Barycentrics of vertices 1 and 2 and the depth, as planes over texel indices.
   const float inv = 1.0f / area;
@@ -151,15 +183,32 @@ BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, 
     }
 }
 
-// Every triangle of scene mesh `mesh_index` into one direction; triangle ids start at first_prim.
+// Rasterizes triangle (p0, p1, p2) into direction frame f (see lhb_raster_projected): one
+// triangle and one direction on its own, as a GPU thread would take them.
+BOUNCE_HD inline void lhb_raster_triangle(const LhbFrame& f, int size, vec3 p0, vec3 p1, vec3 p2,
+                                          uint32_t prim, bool cull_back_faces,
+                                          const CutoutView& cutouts, uint32_t mesh,
+                                          uint32_t triangle, const LhbSlabOut& out,
+                                          LhbRasterStats& stats) {
+  lhb_raster_projected(size, lhb_project(f, p0), lhb_project(f, p1), lhb_project(f, p2),
+                       lhb_area_to_facing(f), prim, cull_back_faces, cutouts, mesh, triangle, out,
+                       stats);
+}
+
+// Every triangle of scene mesh `mesh_index` into one direction; triangle ids start at
+// first_prim. `projected` is scratch of mesh.vertex_count entries: each vertex is projected
+// once, not once per triangle around it.
 BOUNCE_HD inline void lhb_raster_mesh(const LhbFrame& f, int size, const MeshView& mesh,
                                       uint32_t mesh_index, uint32_t first_prim,
                                       bool cull_back_faces, const CutoutView& cutouts,
-                                      const LhbSlabOut& out, LhbRasterStats& stats) {
+                                      LhbProjected* projected, const LhbSlabOut& out,
+                                      LhbRasterStats& stats) {
+  for (uint32_t v = 0; v < mesh.vertex_count; ++v) projected[v] = lhb_project(f, mesh.positions[v]);
+  const float area_to_facing = lhb_area_to_facing(f);
   for (uint32_t t = 0; t < mesh.triangle_count; ++t) {
     const uvec3 i = mesh.triangles[t];
-    lhb_raster_triangle(f, size, mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z],
-                        first_prim + t, cull_back_faces, cutouts, mesh_index, t, out, stats);
+    lhb_raster_projected(size, projected[i.x], projected[i.y], projected[i.z], area_to_facing,
+                         first_prim + t, cull_back_faces, cutouts, mesh_index, t, out, stats);
   }
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/timer.h"
@@ -118,15 +120,19 @@ void LayeredHitBuffers::rasterize(const Scene& scene, std::span<const uint32_t> 
   const size_t per_direction = size_t(settings_.size) * size_t(settings_.size);
   std::vector<MeshView> views;
   std::vector<uint32_t> first_prim;
-  Cutouts cutouts;  // alpha-masked holes leave no element
+  uint32_t most_vertices = 0;  // the projection scratch each task needs
+  Cutouts cutouts;             // alpha-masked holes leave no element
   if (has_cutouts(scene)) cutouts.build(scene);
   const CutoutView cutout_view = cutouts.view();
   slab.triangles = 0;
   for (uint32_t m : meshes) {
     views.push_back(scene.meshes[m].view());
+    most_vertices = std::max(most_vertices, views.back().vertex_count);
     first_prim.push_back(scene.triangle_offsets[m]);
     slab.triangles += scene.meshes[m].triangles.size();
   }
+  // Each thread's projected vertices, reused across its directions.
+  tbb::enumerable_thread_specific<std::vector<LhbProjected>> scratch;
   // One task per direction: it owns that buffer's texels, so insertion needs no atomics and the
   // lists do not depend on the thread count. 320 directions keep every core busy.
   std::vector<LhbRasterStats> per_direction_stats(frames_.size());
@@ -138,9 +144,11 @@ void LayeredHitBuffers::rasterize(const Scene& scene, std::span<const uint32_t> 
                              slab.counts.get() + d * per_direction, slab.layers};
         std::memset(out.counts, 0, per_direction);
         LhbRasterStats stats;
+        std::vector<LhbProjected>& projected = scratch.local();
+        if (projected.size() < most_vertices) projected.resize(most_vertices);
         for (size_t k = 0; k < views.size(); ++k)
           lhb_raster_mesh(frames_[d], settings_.size, views[k], meshes[k], first_prim[k],
-                          settings_.cull_back_faces, cutout_view, out, stats);
+                          settings_.cull_back_faces, cutout_view, projected.data(), out, stats);
         uint64_t full = 0;
         for (size_t t = 0; t < per_direction; ++t) full += out.counts[t] > slab.layers;
         per_direction_stats[d] = stats;
