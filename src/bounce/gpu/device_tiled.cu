@@ -70,8 +70,7 @@ void DeviceTiled::indirect(const DeviceScene& scene, const ConstGBufferView& g,
                          lh,
                          f};
     launch_2d(lw, lh, [=] __device__(int lx, int ly) { estimate_low_res(gather, low, lx, ly); });
-    const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
-                         settings_.show_edges};
+    const EdgeTest edges = settings_.edges.test(diagonal_);
     const ConstLowResView read = low;
     launch_2d(g.width, g.height, [=] __device__(int x, int y) {
       upsample_pixel(gather, read, edges, upsample_row(read, y), image, x, y);

@@ -10,8 +10,27 @@
 #include "bounce/core/parallel_primitives.h"
 #include "bounce/core/timer.h"
 #include "bounce/render/lowres_kernels.h"
+#include "bounce/render/params.h"
 
 namespace bounce {
+
+// The edge test as a technique's settings keep it, relative to the scene's size.
+struct EdgeSettings {
+  float normal = 0.99f;    // re-estimate at full resolution below this normal agreement
+  float distance = 0.01f;  // ... or beyond this position gap, relative to the scene diagonal
+  bool show = false;       // debug view: re-estimated pixels in yellow
+
+  EdgeTest test(float diagonal) const { return {normal, distance * diagonal, show}; }
+};
+
+// The edge test's parameters, under the same names for every technique that estimates at low
+// resolution (edge_normal, edge_distance, show_edges).
+inline void add_edge_params(ParamSet& params, EdgeSettings& s) {
+  params.add_float("edge_normal", &s.normal, -1.0, 1.0, "edge test: normal agreement");
+  params.add_float("edge_distance", &s.distance, 0.0, 1.0,
+                   "edge test: position gap / scene diagonal");
+  params.add_bool("show_edges", &s.show, "show re-estimated pixels in yellow");
+}
 
 // The low-resolution samples, kept across frames so that their storage is reused.
 struct LowResBuffers {

@@ -29,7 +29,7 @@ Image lhb_image(const Scene& scene, Tracer& tracer, int bounces, int frames, int
   technique->settings().lowres = lowres;
   // At 32x32 a jittered pixel spans about 2% of the diagonal: the default gap (1%, sized for
   // 512x512) would call most pixels edges.
-  technique->settings().edge_distance = 0.05f;
+  technique->settings().edges.distance = 0.05f;
   technique->settings().bounces = bounces;
   technique->settings().paths = paths;
   technique->settings().interleave = interleave;

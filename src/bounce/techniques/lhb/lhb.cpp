@@ -36,10 +36,7 @@ LhbTechnique::LhbTechnique() {
                     "filter: largest position gap of a neighbour / view depth");
   params_.add_int("lowres", &s.lowres, 1, 16,
                   "paths at 1/lowres of the width and height (edges at full resolution)");
-  params_.add_float("edge_normal", &s.edge_normal, -1.0, 1.0, "edge test: normal agreement");
-  params_.add_float("edge_distance", &s.edge_distance, 0.0, 1.0,
-                    "edge test: position gap / scene diagonal");
-  params_.add_bool("show_edges", &s.show_edges, "show re-estimated pixels in yellow");
+  add_edge_params(params_, s.edges);
   params_.add_int("seed", &s.seed, 0, 1 << 30, "seed of the paths' random numbers");
 }
 
@@ -125,8 +122,7 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   };
   // At lowres > 1 the paths start from one pixel per lowres^2 block, upsampled, and from every
   // pixel where normals or positions disagree (the code tiled shares, render/lowres_kernels.h).
-  const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
-                       settings_.show_edges};
+  const EdgeTest edges = settings_.edges.test(diagonal_);
   if (settings_.lowres <= 1) {
     ScopedStage stage(context.times, "indirect/gather");
     edge_pixels_ = estimate_at_low_res(view, 1, edges, paths, low_, incoming_view, context.times);
@@ -139,7 +135,7 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   vec3* pixels = out.pixels().data();
   const vec3* incoming = incoming_.data();
   ScopedStage stage(context.times, "indirect/filter");
-  if (settings_.show_edges && settings_.lowres > 1) {
+  if (settings_.edges.show && settings_.lowres > 1) {
     // The debug view: the upsampled incoming light as it is, edges in yellow.
     parallel_for(
         g.size(), [&](size_t i) { pixels[i] = incoming[i]; }, 4096);

@@ -28,9 +28,7 @@ struct LhbTechniqueSettings {
   float filter_normal = 0.9f;
   float filter_distance = 0.05f;  // position gap / view depth
   int lowres = 1;                 // paths at 1/lowres of the width and height, edges at full
-  float edge_normal = 0.99f;      // edge test: least normal agreement
-  float edge_distance = 0.01f;    // edge test: position gap / scene diagonal
-  bool show_edges = false;        // re-estimated pixels in yellow
+  EdgeSettings edges;  // which pixels a low-resolution estimate re-estimates at full resolution
   int seed = 0;
 };
 

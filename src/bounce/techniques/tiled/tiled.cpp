@@ -32,10 +32,7 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_float("alpha", &s.alpha, 0.01, 1.0, "radius reduction of passes at rest");
   params_.add_int("history_passes", &s.history_passes, 1, 64,
                   "photon passes kept and gathered again after a camera move");
-  params_.add_float("edge_normal", &s.edge_normal, -1.0, 1.0, "edge test: normal agreement");
-  params_.add_float("edge_distance", &s.edge_distance, 0.0, 1.0,
-                    "edge test: position gap / scene diagonal");
-  params_.add_bool("show_edges", &s.show_edges, "show re-estimated pixels in yellow");
+  add_edge_params(params_, s.edges);
   params_.add_int("seed", &s.seed, 0, 1 << 30, "photon sample seed");
 }
 
@@ -127,8 +124,7 @@ void TiledPhotonMapping::estimate(const FrameContext& c, const PhotonBuffer& pho
   const TiledGatherView gather = gather_view(g, photons, plan);
   // Low resolution: bilinear upsampling of one gather per plan.lowres^2 block; pixels whose
   // normal or position disagrees with the interpolated one (edges) are gathered themselves.
-  const EdgeTest edges{settings_.edge_normal, settings_.edge_distance * diagonal_,
-                       settings_.show_edges};
+  const EdgeTest edges = settings_.edges.test(diagonal_);
   edge_pixels_ = estimate_at_low_res(
       gather.g, plan.lowres, edges, [gather](int x, int y) { return gather_pixel(gather, x, y); },
       low_, out.view(), c.times);

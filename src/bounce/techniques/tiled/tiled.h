@@ -25,12 +25,10 @@ struct TiledSettings {
   int tile = 8;              // screen tile size of the tile gather, pixels
   int gather = 0;     // density estimation: 0 screen tiles (the seed's; faster here), 1 hash grid
   float slab = 0.1f;  // half-thickness of the tangent slab, relative to the radius
-  bool leak_guard = true;       // per-photon clearance rays against light through thin walls
-  float alpha = 2.0f / 3.0f;    // radius reduction of passes at rest (Knaus and Zwicker 2011)
-  int history_passes = 8;       // photon passes kept and gathered again after a camera move
-  float edge_normal = 0.99f;    // re-estimate at full resolution below this normal agreement
-  float edge_distance = 0.01f;  // ... or beyond this position gap, relative to the diagonal
-  bool show_edges = false;      // debug view: re-estimated pixels in yellow
+  bool leak_guard = true;     // per-photon clearance rays against light through thin walls
+  float alpha = 2.0f / 3.0f;  // radius reduction of passes at rest (Knaus and Zwicker 2011)
+  int history_passes = 8;     // photon passes kept and gathered again after a camera move
+  EdgeSettings edges;  // which pixels a low-resolution estimate re-estimates at full resolution
   int seed = 0;
 };
 
