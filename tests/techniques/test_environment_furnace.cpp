@@ -205,6 +205,34 @@ TEST(EnvironmentMapLight, PathStrategiesAgree) {
   }
 }
 
+// A glossy plane under the map: direct light samples the map by luminance and the BSDF by its
+// lobe, weighted by MIS, so one sample per pixel has no fireflies (light sampling alone scatters
+// a few pixels many times the mean), and many samples agree with the path tracer's estimate.
+TEST(EnvironmentMapLight, GlossyDirectLightHasNoFireflies) {
+  auto map = std::make_shared<const EnvironmentMap>(
+      EnvironmentMap::from_image(scene_test::synthetic_map(8, 4), "synthetic"));
+  Scene scene = plane_under_map(map, 30.0f);
+  scene.materials[0].albedo = vec3(0.05f);
+  scene.materials[0].f0 = vec3(0.9f);
+  scene.materials[0].roughness = 0.1f;
+  scene.finalize();
+  render_test::Job one("direct", 16, 16);
+  one.light_samples = 1;
+  const Image frame = render_test::render(scene, one).direct;
+  const auto grey = [](vec3 c) { return c.x + c.y + c.z; };
+  const float m = grey(mean(frame));
+  float worst = 0.0f;
+  for (const vec3& p : frame.pixels()) worst = std::max(worst, grey(p) / m);
+  EXPECT_LT(worst, 2.0f) << "brightest pixel / mean";
+
+  render_test::Job many("direct", 8, 8);
+  many.light_samples = 64;
+  many.frames = 16;
+  const vec3 direct = mean(render_test::render(scene, many).direct);
+  const vec3 path = mean(render_test::path_reference(scene, 8, 8, 1024, 0, 0));
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(direct[c], path[c], 0.02f * path[c]) << "channel " << c;
+}
+
 TEST(EnvironmentMapLight, RaysThatLeaveTheSceneSeeTheMap) {
   Image image(4, 2);
   for (int i = 0; i < 8; ++i) image.pixels()[size_t(i)] = vec3(float(i + 1), 1.0f, 0.5f);

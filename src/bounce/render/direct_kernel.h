@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "bounce/core/color.h"
 #include "bounce/core/device.h"
@@ -13,9 +14,11 @@
 #include "bounce/core/qmc.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/brdf.h"
+#include "bounce/render/bsdf_sampling.h"
 #include "bounce/render/gbuffer_view.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/light_sampling.h"
+#include "bounce/scene/environment.h"
 #include "bounce/scene/scene_view.h"
 
 namespace bounce {
@@ -45,6 +48,52 @@ BOUNCE_HD inline vec2 pattern_offset(uint32_t pixel, uint32_t light, uint32_t fr
   return {bits_to_unit_float(h), bits_to_unit_float(hash_u32(h ^ 0x68E31DA4u))};
 }
 
+// Hands one light sample (from p, towards ls.wi) to shadow(ray, radiance) with the BRDF, cosine
+// and `scale` applied, unless it arrives from below the surface or carries nothing.
+template <typename Shadow>
+BOUNCE_HD void shade_light_sample(const SurfaceHit& s, vec3 wo, vec3 p, const LightSample& ls,
+                                  float scale, Shadow& shadow) {
+  if (!ls.valid()) return;
+  const float cos_theta = glm::dot(s.normal, ls.wi);
+  // Light from below the face itself cannot arrive, whatever the shading normal says.
+  if (cos_theta <= 0.0f || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) return;
+  const vec3 radiance = eval_brdf(s, wo, ls.wi) * ls.weight * (cos_theta * scale);
+  if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
+}
+
+// The environment light at pixel i: n samples, each one direction drawn by the map's luminance
+// and one drawn by the BSDF, weighted by the power heuristic (Veach 1997). The sky fills every
+// direction, so on a glossy surface a luminance-drawn direction rarely meets the narrow lobe and
+// light sampling alone leaves fireflies; the BSDF's directions find the lobe's reflection.
+template <typename Shadow>
+BOUNCE_HD void direct_environment(const SceneView& scene, const LightRecord& light,
+                                  uint32_t light_id, const SurfaceHit& s, vec3 wo, vec3 p,
+                                  uint32_t i, const DirectSettings& settings, Shadow& shadow) {
+  const int n = settings.light_samples;
+  const float inv_n = 1.0f / float(n);
+  const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+  const vec2 offset_bsdf = pattern_offset(i, light_id ^ 0x5BD1E995u, settings.frame, settings.seed);
+  for (int k = 0; k < n; ++k) {
+    const LightSample ls =
+        sample_environment_light(scene, light, rotate_unit(hammersley(k, n), offset));
+    if (ls.valid())
+      shade_light_sample(s, wo, p, ls, inv_n * power_heuristic(ls.pdf, bsdf_pdf(s, wo, ls.wi)),
+                         shadow);
+    const vec2 ub = rotate_unit(hammersley(k, n), offset_bsdf);
+    const float u_lobe = bits_to_unit_float(hash_u32(i ^ hash_u32(uint32_t(k) ^ light_id)) ^
+                                            hash_u32(settings.frame + settings.seed));
+    const BsdfSample b = sample_bsdf(s, wo, u_lobe, ub);
+    if (!b.valid()) continue;
+    LightSample bs;
+    bs.wi = b.wi;
+    bs.distance = std::numeric_limits<float>::infinity();
+    bs.pdf = b.pdf;
+    bs.weight = environment_radiance(light, scene.environment_map, b.wi) / b.pdf;
+    const float light_pdf = environment_pdf(light, scene.environment_map, b.wi);
+    shade_light_sample(s, wo, p, bs, inv_n * power_heuristic(b.pdf, light_pdf), shadow);
+  }
+}
+
 // Direct light at pixel i of g as seen from `eye`: calls shadow(ray, radiance) for each light
 // sample whose radiance arrives if the ray is clear. The pixel's own emission (g.emission[i])
 // needs no ray: the launcher adds it.
@@ -59,12 +108,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
   const int n = settings.light_samples;
   const float inv_n = 1.0f / float(n);
   auto add = [&](const LightSample& ls, float scale) {
-    if (!ls.valid()) return;
-    const float cos_theta = glm::dot(s.normal, ls.wi);
-    // Light from below the face itself cannot arrive, whatever the shading normal says.
-    if (cos_theta <= 0.0f || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) return;
-    const vec3 radiance = eval_brdf(s, wo, ls.wi) * ls.weight * (cos_theta * scale);
-    if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
+    shade_light_sample(s, wo, p, ls, scale, shadow);
   };
 
   uint32_t light_id = 0;
@@ -72,10 +116,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
     const LightRecord& light = scene.lights[l];
     ++light_id;
     if (light.type == LightType::kEnvironment) {
-      // Light sampling alone (by the map's luminance): no BSDF rays here, as for area lights.
-      const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
-      for (int k = 0; k < n; ++k)
-        add(sample_environment_light(scene, light, rotate_unit(hammersley(k, n), offset)), inv_n);
+      direct_environment(scene, light, light_id, s, wo, p, i, settings, shadow);
       continue;
     }
     if (light.type != LightType::kSphere) {
@@ -134,6 +175,9 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
       const uint32_t entry = picker.pick(u_pick);
       const float pmf = picker.pmf[entry];
       if (!(pmf > 0.0f)) continue;
+      // The environment is sampled apart (below): as a candidate its target is 0, so the
+      // resampled estimate covers the other lights alone and stays unbiased for them.
+      if (int32_t(entry) == scene.environment) continue;
       const LightSample ls = sample_light_entry(scene, picker.light_count, entry, p, u).ls;
       if (!ls.valid()) continue;
       const float cos_theta = glm::dot(s.normal, ls.wi);
@@ -152,6 +196,9 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
     if (kept_weight <= 0.0f) continue;
     shadow(shadow_ray(p, kept), kept_radiance * (weight_sum / (float(m) * kept_weight * float(n))));
   }
+  if (scene.environment >= 0)
+    direct_environment(scene, scene.lights[scene.environment], uint32_t(scene.environment) + 1, s,
+                       wo, p, i, settings, shadow);
 }
 
 }  // namespace bounce
