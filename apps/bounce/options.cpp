@@ -9,6 +9,7 @@
 
 #include "bounce/core/error.h"
 #include "bounce/gpu/cuda_pipeline.h"
+#include "bounce/interactive/flashlight.h"
 #include "bounce/render/params_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
@@ -35,6 +36,11 @@ Scene load_scene_at(const std::string& spec, float at) {
   // that render, reference and sequence agree on the view at time t.
   scene.camera = scene.animation.camera_at(scene.camera, at);
   return scene;
+}
+
+std::optional<size_t> add_flashlight_option(const FrameOptions& options, Scene& scene) {
+  if (!options.flashlight) return std::nullopt;
+  return add_flashlight(scene, scene.camera, FlashlightSettings{});
 }
 
 FrameSettings FrameOptions::settings() const {
@@ -150,6 +156,9 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
         o.params.insert(o.params.begin(), from_file.begin(), from_file.end());
       },
       "JSON file of parameters {\"NAME\": VALUE, ...}; --param overrides it");
+  command.add_flag("--flashlight", o.flashlight,
+                   "The camera carries a spot light (the viewer's flashlight, key F) that follows "
+                   "it along a camera path");
   command.add_flag("!--no-denoise", o.denoise,
                    "Show the raw pipeline: no temporal reuse or denoising");
   command

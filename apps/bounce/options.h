@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@ struct FrameOptions {
   bool still = false;
   bool denoise = true;         // temporal reuse and denoising (--no-denoise: the raw pipeline)
   std::string device = "cpu";  // where the frame's stages run: cpu or cuda
+  bool flashlight = false;     // --flashlight: the camera carries the viewer's spot light
 
   FrameSettings settings() const;
   // The denoiser's parameters: its defaults and the --param assignments that name them.
@@ -47,6 +49,9 @@ void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_requ
 // Loads a scene and, if it is animated, poses it at `at` seconds (its camera too, when it has a
 // camera path).
 Scene load_scene_at(const std::string& spec, float at);
+// With --flashlight, adds the flashlight at the scene's camera to its lights (before the renderer
+// is made) and returns its index there, for place_flashlight as the camera moves; else nullopt.
+std::optional<size_t> add_flashlight_option(const FrameOptions& options, Scene& scene);
 // A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
 std::string scene_stem(const std::string& scene);
 
