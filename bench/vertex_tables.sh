@@ -10,6 +10,8 @@ B=/usr/share/games/openarena/baseoa
 SMALL=${3:-$B/pak1-maps.pk3:maps/oa_dm4.bsp}
 LARGE=${4:-$B/pak6-patch085.pk3:maps/ctf_compromise.bsp}
 SIZE="-W 640 -H 360"
+# The flashlight at a strength that shows in a level tens of metres across (docs/vertex.md).
+FLASH="--flashlight --flashlight-intensity 100"
 # Photons counted as the seed counts them: one stored photon per path (a single bounce split
 # into one direction, no roulette tail), so photons_from_light x accumulation_frames photons
 # in the map.
@@ -42,13 +44,13 @@ for a in 1 2 4 8 16 32 64; do
 done
 
 echo "## flashlight demo: 100 photon paths, 9 reflections, depth 1, ~10K triangles, $SMALL"
-bench "$SMALL" $SIZE --flashlight --param photons_from_light=100 --param diffuse_reflections=9 \
+bench "$SMALL" $SIZE $FLASH --param photons_from_light=100 --param diffuse_reflections=9 \
   --param recursion_depth=1 --param mesh_refinement=6000
 
 echo "## large level: $LARGE, defaults, 640x360"
-bench "$LARGE" $SIZE --flashlight
+bench "$LARGE" $SIZE $FLASH
 
 echo "## targets: $SMALL with the flashlight and its own lights, >= 10,000 photons per frame"
 for size in "-W 640 -H 360" "-W 1280 -H 720"; do
-  bench "$SMALL" $size --flashlight --param photons_from_light=300
+  bench "$SMALL" $size $FLASH --param photons_from_light=300
 done
