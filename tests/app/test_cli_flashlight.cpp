@@ -25,7 +25,7 @@ double mean_difference(const Image& a, const Image& b) {
 
 double mean_value(const Image& a) {
   double sum = 0.0;
-  for (const vec3& p : a.pixels()) sum += double(p.r + p.g + p.b);
+  for (const vec3& p : a.pixels()) sum += double(p.x + p.y + p.z);
   return sum / double(a.pixel_count());
 }
 

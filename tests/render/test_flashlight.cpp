@@ -22,7 +22,7 @@ Scene dark_cornell() {
 
 float luminance_at(const Image& image, int x, int y) {
   const vec3 c = image.at(x, y);
-  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
 }
 
 // Mean luminance of the central quarter of the image (inside the flashlight's inner cone).
