@@ -38,6 +38,7 @@ struct ReferenceOptions {
   float exposure_ev = 0.0f;
   float at = 0.0f;  // animation time
   bool flashlight = false;
+  float flashlight_intensity = 3.0f;  // W/sr
   std::string out;
   std::string checkpoint;          // resume from and save to this file (empty: none)
   double checkpoint_every_s = 60;  // seconds between checkpoint saves
@@ -53,7 +54,11 @@ void run_reference(const ReferenceOptions& o) {
   const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
   check_output_image(out);  // now, not after minutes of rendering
   Scene scene = load_scene_at(o.scene, o.at);
-  if (o.flashlight) add_flashlight(scene, scene.camera, FlashlightSettings{});
+  if (o.flashlight) {
+    FrameOptions frame;  // the flashlight of render and sequence at this intensity
+    frame.flashlight_intensity = o.flashlight_intensity;
+    add_flashlight(scene, scene.camera, flashlight_settings(frame));
+  }
   auto tracer = make_embree_tracer(scene);
   ReferenceSettings settings;
   settings.width = o.width;
@@ -71,7 +76,8 @@ void run_reference(const ReferenceOptions& o) {
   // checkpoint_every_s seconds and when the run is interrupted.
   ReferenceState state;
   const ReferenceCheckpointKey key{
-      fmt::format("{} at {}{}", o.scene, o.at, o.flashlight ? " with flashlight" : ""),
+      fmt::format("{} at {}{}", o.scene, o.at,
+                  o.flashlight ? fmt::format(" with flashlight {}", o.flashlight_intensity) : ""),
       o.width,
       o.height,
       o.seed,
@@ -164,6 +170,10 @@ void add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--flashlight", o->flashlight,
                 "The camera carries the viewer's flashlight (as render --flashlight)");
+  cmd->add_option("--flashlight-intensity", o->flashlight_intensity,
+                  "The flashlight's intensity on its axis, W/sr")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   cmd->add_option("--max-bounces", o->max_bounces,
                   "Indirect bounces counted: 0 direct light only, 1 one bounce, ...; -1 no limit")
       ->check(CLI::Range(-1, 1024))

@@ -13,7 +13,6 @@
 #include "bounce/core/image_io.h"
 #include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
-#include "bounce/interactive/flashlight.h"
 #include "bounce/scene/load.h"
 #include "frame_pattern.h"
 #include "frame_range.h"
@@ -105,7 +104,8 @@ void run_sequence(const SequenceOptions& o) {
       const double t = range.time(k);
       if (!scene.animation.empty()) renderer.animate(scene, float(t));
       const Camera camera = scene.animation.camera_at(scene.camera, float(t));
-      if (flashlight && place_flashlight(scene, *flashlight, camera, FlashlightSettings{})) {
+      if (flashlight &&
+          place_flashlight(scene, *flashlight, camera, flashlight_settings(o.frame))) {
         SceneChange moved;
         moved.lights = true;
         renderer.scene_changed(moved);

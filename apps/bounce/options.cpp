@@ -9,7 +9,6 @@
 
 #include "bounce/core/error.h"
 #include "bounce/gpu/cuda_pipeline.h"
-#include "bounce/interactive/flashlight.h"
 #include "bounce/render/params_file.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
@@ -38,9 +37,15 @@ Scene load_scene_at(const std::string& spec, float at) {
   return scene;
 }
 
+FlashlightSettings flashlight_settings(const FrameOptions& options) {
+  FlashlightSettings s;
+  s.intensity *= options.flashlight_intensity / max_component(s.intensity);  // same colour
+  return s;
+}
+
 std::optional<size_t> add_flashlight_option(const FrameOptions& options, Scene& scene) {
   if (!options.flashlight) return std::nullopt;
-  return add_flashlight(scene, scene.camera, FlashlightSettings{});
+  return add_flashlight(scene, scene.camera, flashlight_settings(options));
 }
 
 FrameSettings FrameOptions::settings() const {
@@ -159,6 +164,11 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_flag("--flashlight", o.flashlight,
                    "The camera carries a spot light (the viewer's flashlight, key F) that follows "
                    "it along a camera path");
+  command
+      .add_option("--flashlight-intensity", o.flashlight_intensity,
+                  "The flashlight's intensity on its axis, W/sr (a Quake level wants 50 to 300)")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   command.add_flag("!--no-denoise", o.denoise,
                    "Show the raw pipeline: no temporal reuse or denoising");
   command

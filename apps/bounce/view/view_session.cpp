@@ -34,6 +34,7 @@ ViewSession::ViewSession(const ViewOptions& options)
   // A camera path alone is an animation to play too.
   playing_ = !scene_.animation.empty() || !scene_.animation.camera_path.empty();
   time_ = options.frame.at;
+  flashlight_settings_ = app::flashlight_settings(options.frame);
   set_flashlight(options.frame.flashlight);
 }
 
