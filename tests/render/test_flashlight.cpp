@@ -76,12 +76,16 @@ TEST(Flashlight, LightsWhatTheCameraFaces) {
   EXPECT_EQ(luminance_at(lit.direct, 0, 0), 0.0f);
   EXPECT_EQ(luminance_at(lit.direct, 47, 47), 0.0f);
 
-  // A camera turned 40 degrees to the red wall carries the light with it: the centre stays lit.
-  const Camera left = turned(front, 40.0f);
+  // From inside the box, a camera turned 40 degrees to the red wall carries the light with it:
+  // the centre stays lit.
+  Camera inside = front;
+  inside.position.z = 0.15f;
+  inside.look_at.z = 1.0f;
+  const Camera left = turned(inside, 40.0f);
   const Shot followed = render_with_flashlight(left, left);
   EXPECT_GT(centre_mean(followed.direct), 0.05f);
   // The same view with the light left pointing ahead: the centre is dark in direct light.
-  const Shot left_behind = render_with_flashlight(left, front);
+  const Shot left_behind = render_with_flashlight(left, inside);
   EXPECT_LT(centre_mean(left_behind.direct), 0.1f * centre_mean(followed.direct));
 }
 
