@@ -11,7 +11,7 @@ SMALL=${3:-$B/pak1-maps.pk3:maps/oa_dm4.bsp}
 LARGE=${4:-$B/pak6-patch085.pk3:maps/ctf_compromise.bsp}
 SIZE="-W 640 -H 360"
 # The flashlight at a strength that shows in a level tens of metres across (docs/vertex.md).
-FLASH="--flashlight --flashlight-intensity 100"
+FLASH="--flashlight --flashlight-intensity 1000"
 # Photons counted as the seed counts them: one stored photon per path (a single bounce split
 # into one direction, no roulette tail), so photons_from_light x accumulation_frames photons
 # in the map.

@@ -166,7 +166,8 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
                    "it along a camera path");
   command
       .add_option("--flashlight-intensity", o.flashlight_intensity,
-                  "The flashlight's intensity on its axis, W/sr (a Quake level wants 50 to 300)")
+                  "The flashlight's intensity on its axis, W/sr (a Quake level wants hundreds to a "
+                  "thousand)")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   command.add_flag("!--no-denoise", o.denoise,

@@ -32,7 +32,7 @@ struct FrameOptions {
   std::string device = "cpu";  // where the frame's stages run: cpu or cuda
   bool flashlight = false;     // --flashlight: the camera carries the viewer's spot light
   // Its intensity on the axis, W/sr (the viewer's 3 suits a room of metres; levels tens of
-  // metres across need tens to hundreds).
+  // metres across need hundreds to a thousand).
   float flashlight_intensity = 3.0f;
 
   FrameSettings settings() const;
