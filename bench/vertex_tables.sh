@@ -52,5 +52,5 @@ bench "$LARGE" $SIZE $FLASH
 
 echo "## targets: $SMALL with the flashlight and its own lights, >= 10,000 photons per frame"
 for size in "-W 640 -H 360" "-W 1280 -H 720"; do
-  bench "$SMALL" $size $FLASH --param photons_from_light=300
+  bench "$SMALL" $size $FLASH --param photons_from_light=350
 done
