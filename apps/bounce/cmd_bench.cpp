@@ -7,6 +7,7 @@
 #include "bench_json.h"
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/core/timer.h"
 #include "bounce/eval/temporal_runs.h"
 #include "bounce/scene/load.h"
 #include "input_checks.h"
@@ -91,9 +92,12 @@ TemporalRecord run_temporal(const BenchOptions& o, const Scene& scene) {
 
 void run_bench(BenchOptions o) {
   const ThreadLimit limit(o.frame.threads);
+  const Stopwatch load_watch;
   Scene scene = load_scene_at(o.frame.scene, o.frame.at);
+  const double load_ms = load_watch.elapsed_ms();
   if (o.animate && scene.animation.empty())
     fail("{}: --animate: the scene has no animation", scene.source);
+  add_flashlight_option(o.frame, scene);  // the camera stays where it is: placed once
   auto technique = make_checked_technique(o.frame, scene);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, std::move(technique));
@@ -141,6 +145,8 @@ void run_bench(BenchOptions o) {
       scene.source, renderer.technique().name(), settings.width, settings.height,
       settings.light_samples, o.frames, o.warmup, threads, o.animate ? ", animated" : "",
       o.accumulate ? ", accumulating at rest" : "");
+  fmt::print("scene loaded in {:.1f} ms, {} triangles; BVH built in {:.1f} ms\n", load_ms,
+             scene.triangle_count(), tracer->stats().build_ms);
   print_stage_table(stats, true);
   const double total_ms = stats.rows().back().mean_ms;
   fmt::print("frame rate                   {:>10.1f} fps\n",
@@ -148,6 +154,10 @@ void run_bench(BenchOptions o) {
   fmt::print("primary rays/s (gbuffer)     {:>10.2f} M\n", primary / (gbuffer_ms * 1e3));
   fmt::print("shadow rays/s (direct stage) {:>10.2f} M  ({:.0f} shadow rays per frame)\n",
              shadow / (direct_ms * 1e3), shadow / o.frames);
+  if (record.photon_paths > 0)
+    fmt::print("photons per frame            {:>10.0f}    ({:.0f} paths; {:.2f} M stored/s)\n",
+               record.photons_stored / o.frames, record.photon_paths / o.frames,
+               record.photons_stored / (stats.rows().back().mean_ms * o.frames * 1e3));
   if (const uint64_t kept = renderer.technique().memory_estimate(scene); kept > 0)
     fmt::print("technique data (estimate)    {:>10.1f} MiB  (photons, meshes, buffers kept)\n",
                double(kept) / (1024.0 * 1024.0));

@@ -12,6 +12,7 @@
 #include "bounce/core/interrupt.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/timer.h"
+#include "bounce/interactive/flashlight.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/path/reference.h"
 #include "bounce/techniques/path/reference_slices.h"
@@ -36,6 +37,8 @@ struct ReferenceOptions {
   int threads = 0;
   float exposure_ev = 0.0f;
   float at = 0.0f;  // animation time
+  bool flashlight = false;
+  float flashlight_intensity = 3.0f;  // W/sr
   std::string out;
   std::string checkpoint;          // resume from and save to this file (empty: none)
   double checkpoint_every_s = 60;  // seconds between checkpoint saves
@@ -50,7 +53,12 @@ void run_reference(const ReferenceOptions& o) {
   const ThreadLimit limit(o.threads);
   const std::string out = o.out.empty() ? default_output(o.scene) : o.out;
   check_output_image(out);  // now, not after minutes of rendering
-  const Scene scene = load_scene_at(o.scene, o.at);
+  Scene scene = load_scene_at(o.scene, o.at);
+  if (o.flashlight) {
+    FrameOptions frame;  // the flashlight of render and sequence at this intensity
+    frame.flashlight_intensity = o.flashlight_intensity;
+    add_flashlight(scene, scene.camera, flashlight_settings(frame));
+  }
   auto tracer = make_embree_tracer(scene);
   ReferenceSettings settings;
   settings.width = o.width;
@@ -67,13 +75,15 @@ void run_reference(const ReferenceOptions& o) {
   // A checkpoint resumes the samples of an earlier run with the same key, and is saved every
   // checkpoint_every_s seconds and when the run is interrupted.
   ReferenceState state;
-  const ReferenceCheckpointKey key{fmt::format("{} at {}", o.scene, o.at),
-                                   o.width,
-                                   o.height,
-                                   o.seed,
-                                   o.max_bounces,
-                                   o.rr_start,
-                                   o.sample_offset};
+  const ReferenceCheckpointKey key{
+      fmt::format("{} at {}{}", o.scene, o.at,
+                  o.flashlight ? fmt::format(" with flashlight {}", o.flashlight_intensity) : ""),
+      o.width,
+      o.height,
+      o.seed,
+      o.max_bounces,
+      o.rr_start,
+      o.sample_offset};
   if (!o.checkpoint.empty() && std::filesystem::exists(o.checkpoint)) {
     state = load_reference_checkpoint(o.checkpoint, key);
     fmt::print("resuming {} from {} spp\n", o.checkpoint, state.spp);
@@ -156,6 +166,12 @@ void add_reference_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1e7))
       ->capture_default_str();
   cmd->add_option("--at", o->at, "Animated scenes: the animation time to pose the scene at, s")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  cmd->add_flag("--flashlight", o->flashlight,
+                "The camera carries the viewer's flashlight (as render --flashlight)");
+  cmd->add_option("--flashlight-intensity", o->flashlight_intensity,
+                  "The flashlight's intensity on its axis, W/sr")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   cmd->add_option("--max-bounces", o->max_bounces,

@@ -33,8 +33,9 @@ void run_render(const RenderOptions& o) {
   const std::string out = o.out.empty() ? default_output(o.frame.scene) : o.out;
   check_output_image(out);  // now, not after the render
   Stopwatch load_watch;
-  const Scene scene = load_scene_at(o.frame.scene, o.frame.at);
+  Scene scene = load_scene_at(o.frame.scene, o.frame.at);
   const double load_ms = load_watch.elapsed_ms();
+  add_flashlight_option(o.frame, scene);  // a still: placed once at the camera
   FrameOptions frame_options = o.frame;
   frame_options.still = true;  // a still affords more work per pass than a real-time frame
   auto technique = make_checked_technique(frame_options, scene);

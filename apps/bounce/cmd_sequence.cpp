@@ -79,6 +79,7 @@ void run_sequence(const SequenceOptions& o) {
         "--global-numbers: --from {:g} s is not on the frame grid at {:g} fps (a whole number of "
         "frames from 0 s)",
         from, o.fps);
+  const std::optional<size_t> flashlight = add_flashlight_option(o.frame, scene);
   auto technique = make_checked_technique(o.frame, scene);
   create_directory(pattern);
 
@@ -103,6 +104,12 @@ void run_sequence(const SequenceOptions& o) {
       const double t = range.time(k);
       if (!scene.animation.empty()) renderer.animate(scene, float(t));
       const Camera camera = scene.animation.camera_at(scene.camera, float(t));
+      if (flashlight &&
+          place_flashlight(scene, *flashlight, camera, flashlight_settings(o.frame))) {
+        SceneChange moved;
+        moved.lights = true;
+        renderer.scene_changed(moved);
+      }
       const bool moving =
           renderer.next_change(camera, realtime_frame_settings(o.frame, true)).any();
       const Frame& frame = renderer.render(camera, realtime_frame_settings(o.frame, moving));

@@ -37,6 +37,17 @@ Scene load_scene_at(const std::string& spec, float at) {
   return scene;
 }
 
+FlashlightSettings flashlight_settings(const FrameOptions& options) {
+  FlashlightSettings s;
+  s.intensity *= options.flashlight_intensity / max_component(s.intensity);  // same colour
+  return s;
+}
+
+std::optional<size_t> add_flashlight_option(const FrameOptions& options, Scene& scene) {
+  if (!options.flashlight) return std::nullopt;
+  return add_flashlight(scene, scene.camera, flashlight_settings(options));
+}
+
 FrameSettings FrameOptions::settings() const {
   FrameSettings s;
   s.width = width;
@@ -150,6 +161,15 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
         o.params.insert(o.params.begin(), from_file.begin(), from_file.end());
       },
       "JSON file of parameters {\"NAME\": VALUE, ...}; --param overrides it");
+  command.add_flag("--flashlight", o.flashlight,
+                   "The camera carries a spot light (the viewer's flashlight, key F) that follows "
+                   "it along a camera path");
+  command
+      .add_option("--flashlight-intensity", o.flashlight_intensity,
+                  "The flashlight's intensity on its axis, W/sr (a Quake level wants hundreds to a "
+                  "thousand)")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   command.add_flag("!--no-denoise", o.denoise,
                    "Show the raw pipeline: no temporal reuse or denoising");
   command

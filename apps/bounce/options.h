@@ -4,9 +4,11 @@
 #include <CLI/CLI.hpp>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bounce/interactive/flashlight.h"
 #include "bounce/render/renderer.h"
 
 namespace bounce::app {
@@ -28,6 +30,10 @@ struct FrameOptions {
   bool still = false;
   bool denoise = true;         // temporal reuse and denoising (--no-denoise: the raw pipeline)
   std::string device = "cpu";  // where the frame's stages run: cpu or cuda
+  bool flashlight = false;     // --flashlight: the camera carries the viewer's spot light
+  // Its intensity on the axis, W/sr (the viewer's 3 suits a room of metres; levels tens of
+  // metres across need hundreds to a thousand).
+  float flashlight_intensity = 3.0f;
 
   FrameSettings settings() const;
   // The denoiser's parameters: its defaults and the --param assignments that name them.
@@ -47,6 +53,11 @@ void add_frame_options(CLI::App& command, FrameOptions& options, bool scene_requ
 // Loads a scene and, if it is animated, poses it at `at` seconds (its camera too, when it has a
 // camera path).
 Scene load_scene_at(const std::string& spec, float at);
+// The flashlight of the options: the viewer's, at --flashlight-intensity.
+FlashlightSettings flashlight_settings(const FrameOptions& options);
+// With --flashlight, adds the flashlight at the scene's camera to its lights (before the renderer
+// is made) and returns its index there, for place_flashlight as the camera moves; else nullopt.
+std::optional<size_t> add_flashlight_option(const FrameOptions& options, Scene& scene);
 // A file-name stem for a scene spec: "cubes:100" -> "cubes-100", "dir/room.obj" -> "room".
 std::string scene_stem(const std::string& scene);
 

@@ -34,6 +34,8 @@ ViewSession::ViewSession(const ViewOptions& options)
   // A camera path alone is an animation to play too.
   playing_ = !scene_.animation.empty() || !scene_.animation.camera_path.empty();
   time_ = options.frame.at;
+  flashlight_settings_ = app::flashlight_settings(options.frame);
+  set_flashlight(options.frame.flashlight);
 }
 
 void ViewSession::reset_camera() {
@@ -87,8 +89,7 @@ void ViewSession::set_time(float t) {
 void ViewSession::set_flashlight(bool on) {
   if (on == flashlight()) return;
   if (on) {
-    flashlight_index_ = scene_.lights.size();
-    scene_.lights.push_back(make_flashlight(camera_.camera(), flashlight_settings_));
+    flashlight_index_ = add_flashlight(scene_, camera_.camera(), flashlight_settings_);
   } else {
     scene_.lights.erase(scene_.lights.begin() + std::ptrdiff_t(*flashlight_index_));
     flashlight_index_.reset();
@@ -97,13 +98,9 @@ void ViewSession::set_flashlight(bool on) {
 }
 
 void ViewSession::place_flashlight() {
-  if (!flashlight_index_) return;
-  const Light l = make_flashlight(camera_.camera(), flashlight_settings_);
-  Light& current = scene_.lights[*flashlight_index_];
-  if (current != l) {
-    current = l;
+  if (flashlight_index_ &&
+      bounce::place_flashlight(scene_, *flashlight_index_, camera_.camera(), flashlight_settings_))
     lights_changed();
-  }
 }
 
 const Frame& ViewSession::render(int out_w, int out_h, double dt) {
