@@ -3,7 +3,7 @@
 # for many frames with each technique, sampling the process's resident memory every K frames
 # (bench --memory-every, read from /proc/self/statm), and checks that it stays flat after warm-up.
 #
-#   scripts/soak.sh [FRAMES] [SIZE] [TECHNIQUE...]   (default: 10000 frames, 128x128; direct tiled vertex lhb)
+#   scripts/soak.sh [FRAMES] [SIZE] [TECHNIQUE...]   (default: 10000 frames, 64x64; direct tiled vertex lhb)
 #
 # BOUNCE names the program (default: build/release/bounce), SOAK_SCENE the scene
 # (default: scenes/dynamic-cornell.bounce.json), SOAK_WARMUP the warm-up frames (default 200),
@@ -15,7 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 frames=${1:-10000}
-size=${2:-128}
+size=${2:-64}
 shift 2 || shift $# || true
 techniques=("$@")
 ((${#techniques[@]} > 0)) || techniques=(direct tiled vertex lhb)
