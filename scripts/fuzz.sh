@@ -7,8 +7,9 @@
 #
 # BOUNCE_FUZZ_BUILD names another build folder configured with -DBOUNCE_FUZZ=ON (default: the
 # preset's build/asan). The corpus each run grows is kept in BUILD/run/corpus/TARGET and reused
-# by the next run; an input that crashes, leaks or hangs (10 s) is saved in BUILD/run/artifacts
-# and the script fails. Each target's executions and coverage are printed at the end (docs/reliability.md).
+# by the next run; an input that crashes, leaks, hangs (10 s) or meets undefined behaviour
+# (UBSAN_OPTIONS=halt_on_error=1) is saved in BUILD/run/artifacts and the script fails. Each
+# target's executions and coverage are printed at the end (docs/reliability.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -47,7 +48,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$run/corpus/$t"
   log="$run/$t.log"
   echo "fuzz_$t: ${seconds} s"
-  if ! ASAN_OPTIONS=detect_leaks=1 $build/fuzz/fuzz_$t "$run/corpus/$t" "$run/seeds/$t" \
+  if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 $build/fuzz/fuzz_$t "$run/corpus/$t" "$run/seeds/$t" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=1048576 \
       -print_final_stats=1 -artifact_prefix="$run/artifacts/$t-" >"$log" 2>&1; then
     echo "fuzz_$t FAILED: see $log and $run/artifacts" >&2
