@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "bounce/core/error.h"
+#include "bounce/core/parallel.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
@@ -24,6 +25,9 @@ std::string scratch_file(const uint8_t* data, size_t size, const std::string& ex
 }
 
 void render_tiny(const Scene& scene) {
+  // One thread: a fuzz run takes one core (runs of several targets can share a machine), and an
+  // 8x8 frame spends more on handing work to other threads than on the work.
+  static const ThreadLimit one_thread(1);
   FrameSettings settings;
   settings.width = 8;
   settings.height = 8;

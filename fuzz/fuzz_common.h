@@ -16,8 +16,8 @@ namespace bounce::fuzz {
 // need one) and returns its path. Under /dev/shm when it exists, so each run stays in memory.
 std::string scratch_file(const uint8_t* data, size_t size, const std::string& extension);
 
-// Renders one 8x8 frame of the scene's camera with the default technique (tiled, few photons) and
-// one with direct light: tracer build, photon tracing and gathering, denoiser.
+// Renders, on one thread, one 8x8 frame of the scene's camera with the default technique (tiled,
+// few photons) and one with direct light: tracer build, photon tracing and gathering, denoiser.
 void render_tiny(const Scene& scene);
 
 // Loads `path` with load_scene (which validates) and renders it tiny; bounce::Error is the input

@@ -5,10 +5,13 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; all targets)
 #   targets: obj gltf glb scene_file bsp pk3
 #
-# BOUNCE_FUZZ_BUILD names another build folder configured with -DBOUNCE_FUZZ=ON (default: the
-# preset's build/asan). The corpus each run grows is kept in BUILD/run/corpus/TARGET and reused
-# by the next run; an input that crashes, leaks or hangs (10 s) is saved in BUILD/run/artifacts
-# and the script fails. Each target's executions and coverage are printed at the end (docs/reliability.md).
+# BOUNCE_FUZZ_BUILD names a build folder configured with -DBOUNCE_FUZZ=ON and already built (the
+# script then builds nothing); by default the script configures and builds the asan preset's
+# build/asan. FUZZ_RUNS=N also stops each target after N executions (a campaign: FUZZ_RUNS=1000000
+# with a generous time). The corpus each run grows is kept in BUILD/run/corpus/TARGET and reused
+# by the next run; an input that crashes, leaks, hangs (10 s) or meets undefined behaviour
+# (UBSAN_OPTIONS=halt_on_error=1) is saved in BUILD/run/artifacts and the script fails. Each
+# target's executions and coverage are printed at the end (docs/reliability.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,8 +21,12 @@ targets=("$@")
 ((${#targets[@]} > 0)) || targets=(obj gltf glb scene_file bsp pk3)
 
 build=${BOUNCE_FUZZ_BUILD:-build/asan}
-[[ -n ${BOUNCE_FUZZ_BUILD:-} ]] || cmake --preset asan >/dev/null
-cmake --build "$build" -j2 --target fuzz_write_seeds $(printf 'fuzz_%s ' "${targets[@]}")
+if [[ -z ${BOUNCE_FUZZ_BUILD:-} ]]; then
+  cmake --preset asan >/dev/null
+  cmake --build "$build" -j2 --target fuzz_write_seeds $(printf 'fuzz_%s ' "${targets[@]}")
+fi
+runs=()
+[[ -z ${FUZZ_RUNS:-} ]] || runs=(-runs="$FUZZ_RUNS")
 
 run=$build/run
 mkdir -p "$run/artifacts"
@@ -47,9 +54,9 @@ for t in "${targets[@]}"; do
   mkdir -p "$run/corpus/$t"
   log="$run/$t.log"
   echo "fuzz_$t: ${seconds} s"
-  if ! ASAN_OPTIONS=detect_leaks=1 $build/fuzz/fuzz_$t "$run/corpus/$t" "$run/seeds/$t" \
+  if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 $build/fuzz/fuzz_$t "$run/corpus/$t" "$run/seeds/$t" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=1048576 \
-      -print_final_stats=1 -artifact_prefix="$run/artifacts/$t-" >"$log" 2>&1; then
+      -print_final_stats=1 -artifact_prefix="$run/artifacts/$t-" "${runs[@]}" >"$log" 2>&1; then
     echo "fuzz_$t FAILED: see $log and $run/artifacts" >&2
     grep -E "ERROR|SUMMARY|Test unit written" "$log" | head -5 >&2 || true
     failed=1

@@ -112,6 +112,10 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
         {"paths_per_s", per_second(r.photon_paths, r.technique_ms)}}},
       {"flicker", flicker_json(r.temporal)},
       {"settle", settle_json(r.temporal)},
+      {"resident_memory", r.memory == nullptr ? json()
+                                              : json{{"frames", r.memory->frames},
+                                                     {"bytes", r.memory->bytes},
+                                                     {"growth_after_warmup", r.memory_growth}}},
   };
   save_text_file(path, record.dump(2) + "\n");
 }

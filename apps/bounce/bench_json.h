@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "bounce/core/resident_memory.h"
 #include "bounce/core/timer.h"
 #include "bounce/eval/temporal_runs.h"
 #include "bounce/render/renderer.h"
@@ -37,6 +38,8 @@ struct BenchRecord {
   double gbuffer_ms = 0.0, direct_ms = 0.0;
   double technique_ms = 0.0;                 // the technique's stages: prepare and indirect
   const TemporalRecord* temporal = nullptr;  // "flicker" and "settle" (null when not measured)
+  const MemorySamples* memory = nullptr;     // "resident_memory" (null when not sampled)
+  double memory_growth = 0.0;                // peak after warm-up / first after warm-up - 1
 };
 
 // Writes the record as JSON to `path`, atomically (a temporary file renamed over the target).

@@ -2,11 +2,13 @@
 // --flicker and --settle add the temporal metrics (bounce/eval/temporal_runs.h).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "bench_json.h"
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
+#include "bounce/core/resident_memory.h"
 #include "bounce/core/timer.h"
 #include "bounce/eval/temporal_runs.h"
 #include "bounce/scene/load.h"
@@ -34,6 +36,7 @@ struct BenchOptions {
   // Frames at rest average into a converged image (as the viewer at rest); off, every frame is
   // a real-time frame as in motion.
   bool accumulate = false;
+  int memory_every = 0;  // --memory-every: sample resident memory every K frames; 0: off
 };
 
 constexpr float kAnimationStep = 1.0f / 30.0f;
@@ -105,10 +108,14 @@ void run_bench(BenchOptions o) {
   FrameSettings settings = o.frame.settings();
   settings.accumulate = o.accumulate;
   int frame_number = 0;
+  MemorySamples memory;
   const auto next_frame = [&]() -> const Frame& {
     if (o.animate) renderer.animate(scene, o.frame.at + kAnimationStep * float(frame_number));
     ++frame_number;
-    return renderer.render(scene.camera, settings);
+    const Frame& f = renderer.render(scene.camera, settings);
+    if (o.memory_every > 0 && frame_number % o.memory_every == 0)
+      memory.add(frame_number, resident_memory_bytes());
+    return f;
   };
 
   // The first frame builds what later frames reuse (photon maps, refined meshes, hit buffers):
@@ -164,6 +171,19 @@ void run_bench(BenchOptions o) {
   fmt::print(
       "first frame                  {:>10.1f} ms  (prepare {:.1f} ms: what later frames reuse)\n",
       first_ms, first_prepare_ms);
+  if (o.memory_every > 0 && !memory.frames.empty()) {
+    record.memory = &memory;
+    record.memory_growth = memory.growth_after(o.warmup);
+    const auto first = std::lower_bound(memory.frames.begin(), memory.frames.end(), o.warmup);
+    const size_t i0 = first == memory.frames.end() ? 0 : size_t(first - memory.frames.begin());
+    const auto peak = *std::max_element(memory.bytes.begin() + long(i0), memory.bytes.end());
+    fmt::print(
+        "resident memory              {:>10.1f} MiB after warm-up, {:.1f} at the end, peak "
+        "{:.1f} ({:+.2f}%; {} samples, every {} frames)\n",
+        double(memory.bytes[i0]) / 1048576.0, double(memory.bytes.back()) / 1048576.0,
+        double(peak) / 1048576.0, 100.0 * record.memory_growth, memory.frames.size(),
+        o.memory_every);
+  }
   TemporalRecord temporal;
   if (o.flicker > 0 || o.settle) temporal = run_temporal(o, scene);
   if (o.json.empty()) return;
@@ -203,6 +223,10 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--accumulate", options->accumulate,
                 "Average frames at rest into a converged image, as the viewer does at rest "
                 "(default: every frame is a real-time frame, as in motion)");
+  cmd->add_option("--memory-every", options->memory_every,
+                  "Sample the process's resident memory every K frames (warm-up included); prints "
+                  "its growth after warm-up and writes the samples to --json")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--json", options->json,
                   "Also write the results, build and machine as JSON to this file")
       ->check(non_empty_path());

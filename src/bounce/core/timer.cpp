@@ -1,5 +1,6 @@
 #include "bounce/core/timer.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bounce {
@@ -32,24 +33,29 @@ namespace bounce {
 
 namespace {
 
-StageStatistics::Row summarise(const std::string& name, const std::vector<double>& ms,
+// Mean and sample standard deviation over `frames` frames, of which moments.n had the stage and
+// the rest count as 0 ms: the two groups combine as in Chan et al.'s pairwise update (1979).
+StageStatistics::Row summarise(const std::string& name, const StageStatistics::Moments& m,
                                size_t frames) {
   StageStatistics::Row row{name, 0.0, 0.0};
   if (frames == 0) return row;
-  // A stage missing from some frames counts as 0 ms there.
-  double sum = 0.0;
-  for (double v : ms) sum += v;
-  row.mean_ms = sum / double(frames);
-  double sq = 0.0;
-  for (double v : ms) sq += (v - row.mean_ms) * (v - row.mean_ms);
-  sq += double(frames - ms.size()) * row.mean_ms * row.mean_ms;
-  row.stddev_ms = frames > 1 ? std::sqrt(sq / double(frames - 1)) : 0.0;
+  const double n = double(m.n), total = double(frames);
+  row.mean_ms = m.mean * n / total;
+  const double m2 = m.m2 + m.mean * m.mean * n * (total - n) / total;
+  row.stddev_ms = frames > 1 ? std::sqrt(std::max(m2, 0.0) / (total - 1.0)) : 0.0;
   return row;
 }
 
 }  // namespace
 
-StageStatistics::Samples& StageStatistics::samples_for(const std::string& name) {
+void StageStatistics::Moments::add(double v) {
+  ++n;
+  const double delta = v - mean;
+  mean += delta / double(n);
+  m2 += delta * (v - mean);
+}
+
+StageStatistics::Stage& StageStatistics::stage_for(const std::string& name) {
   for (auto& s : stages_)
     if (s.name == name) return s;
   stages_.push_back({name, {}});
@@ -57,8 +63,8 @@ StageStatistics::Samples& StageStatistics::samples_for(const std::string& name) 
 }
 
 void StageStatistics::add(const StageTimes& frame) {
-  for (const auto& s : frame.stages()) samples_for(s.name).ms.push_back(s.ms);
-  totals_.push_back(frame.total_ms());
+  for (const auto& s : frame.stages()) stage_for(s.name).ms.add(s.ms);
+  totals_.add(frame.total_ms());
   ++frames_;
 }
 

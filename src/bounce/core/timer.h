@@ -56,6 +56,8 @@ class ScopedStage {
 namespace bounce {
 
 // Statistics of stage times over many frames: mean and sample standard deviation per stage.
+// Kept as running moments (Welford), so memory stays constant however many frames are added:
+// a soak of 10,000 frames must not grow by the samples it has seen.
 class StageStatistics {
  public:
   struct Row {
@@ -65,17 +67,25 @@ class StageStatistics {
   };
   void add(const StageTimes& frame);
   size_t frames() const { return frames_; }
-  // One row per stage in pipeline order, then "total".
+  // One row per stage in pipeline order, then "total". A stage missing from some frames counts
+  // as 0 ms there.
   std::vector<Row> rows() const;
 
- private:
-  struct Samples {
-    std::string name;
-    std::vector<double> ms;
+  // Running count, mean and sum of squared deviations of the values added.
+  struct Moments {
+    size_t n = 0;
+    double mean = 0.0, m2 = 0.0;
+    void add(double v);
   };
-  Samples& samples_for(const std::string& name);
-  std::vector<Samples> stages_;
-  std::vector<double> totals_;
+
+ private:
+  struct Stage {
+    std::string name;
+    Moments ms;  // over the frames the stage appeared in
+  };
+  Stage& stage_for(const std::string& name);
+  std::vector<Stage> stages_;
+  Moments totals_;
   size_t frames_ = 0;
 };
 
