@@ -668,6 +668,49 @@ TEST(Denoiser, FilterFadesAsTheHistoryGrows) {
   }
 }
 
+TEST(Denoiser, DirectPassesAtRestDropOnePerDoublingAfterTheFade) {
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 0), 3);
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 31), 3);
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 32), 2);
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 63), 2);
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 64), 1);
+  EXPECT_EQ(direct_iterations_at_rest(3, 32, 1 << 30), 1);  // never fewer than one
+  EXPECT_EQ(direct_iterations_at_rest(5, 8, 40), 2);        // 8, 16, 32: three fewer
+  EXPECT_EQ(direct_iterations_at_rest(3, 0, 1000), 3);      // 0: no fade
+  EXPECT_EQ(direct_iterations_at_rest(0, 32, 1000), 0);
+}
+
+// A long rest thins the direct light's filter: the same frames give the same image as without
+// the fade until rest_atrous_frames frames at rest, then a noisier one (fewer passes), which still
+// beats the plain per-pixel average of the frames.
+TEST(Denoiser, DirectFilterThinsOnlyAfterTheFadeFrames) {
+  const int n = 24, fade = 8, frames = 2 * fade + 1;
+  const GBuffer g = plane(n, n);
+  Pcg32 rng(41);
+  Denoiser faded, full;
+  faded.settings().rest_atrous_frames = fade;
+  full.settings().rest_atrous_frames = 0;
+  Image sum(n, n, vec3(0.0f));
+  for (int k = 0; k < frames; ++k) {
+    const Image light = noisy(n, n, rng, 0.5f, [](int, int) { return 1.0f; });
+    sum += light;
+    const HistoryState state = k == 0 ? HistoryState::kReset : HistoryState::kRest;
+    const Image a = run(faded, g, state, light).direct;
+    const Image b = run(full, g, state, light).direct;
+    if (k < fade) {
+      EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+    } else if (k == frames - 1) {
+      // 16 frames at rest: one pass fewer at 8 and at 16, one left of three.
+      Image average = sum;
+      average *= 1.0f / float(frames);
+      const float da = deviation_x(a, 0, n, 0, n), db = deviation_x(b, 0, n, 0, n);
+      EXPECT_GT(da, 1.5f * db);
+      EXPECT_LT(da, 0.6f * deviation_x(average, 0, n, 0, n));
+      EXPECT_NEAR(mean_x(a, 0, n, 0, n), mean_x(average, 0, n, 0, n), 0.01f);
+    }
+  }
+}
+
 // Rows are filtered independently: one thread or two give the same image, bit for bit.
 TEST(Denoiser, ResultDoesNotDependOnTheThreadCount) {
   GBuffer g = World::seen_from(ivec2(0));
@@ -698,7 +741,7 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
   for (const char* name :
        {"temporal", "spatial", "atrous_iterations", "indirect_iterations", "indirect_resolution",
         "sigma_luminance", "sigma_normal", "sigma_depth", "history_max", "accumulated_history",
-        "clip_gamma", "depth_tolerance", "normal_tolerance"})
+        "rest_atrous_frames", "clip_gamma", "depth_tolerance", "normal_tolerance"})
     EXPECT_EQ(names.count(name), 1u) << name;
   d.params().set("atrous_iterations", "2");
   d.params().set("sigma_luminance", "8");

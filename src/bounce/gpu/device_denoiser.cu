@@ -247,6 +247,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
                   : device_denoise::temporal<false, false>(temporal, row_short);
   }
   rest_valid_ = rest || state == HistoryState::kReset;
+  rest_frames_ = rest && !resized ? std::min(rest_frames_, (1 << 30) - 1) + 1 : 0;
 
   ConstRgbPlanes light_d = light_direct_.view();
   ConstRgbPlanes light_i = light_indirect_.view();
@@ -273,7 +274,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   const denoise::AtrousPass base =
       denoise::atrous_base(s, ConstSurfacePlanes(surface_.view()), depth_slope_.data(), light_d,
                            var_direct_.data(), light_i, var_indirect_.data(), w, h);
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_);
   const int indirect_iterations = plan.indirect_iterations;
   const bool half = plan.half, both = plan.both;
   if (spatial) {
@@ -284,7 +285,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
       pass.indirect.out_var = filter_var_indirect_[k & 1].data();
     };
     const denoise::AtrousPass result =
-        device_denoise::run_atrous(base, both, s.atrous_iterations, outputs);
+        device_denoise::run_atrous(base, both, plan.direct_iterations, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }

@@ -42,6 +42,7 @@ class DeviceDenoiser {
 
   int width_ = 0, height_ = 0;
   bool valid_ = false, had_indirect_ = false, rest_valid_ = false;
+  int rest_frames_ = 0;  // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
   Surface surface_, prev_surface_, half_surface_;
   DeviceBuffer<denoise::HistoryTexel> history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;

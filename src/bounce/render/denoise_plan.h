@@ -44,19 +44,23 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
 }
 
 struct AtrousPlan {
+  int direct_iterations = 0;    // passes over direct light
   int indirect_iterations = 0;  // passes over indirect light (0: none)
   bool half = false;            // indirect light filtered at half resolution
   // At full resolution with as many passes, both lights share each pass's geometry.
   bool both = false;
 };
 
-inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_indirect,
-                              int height) {
+// `rest_frames`: consecutive frames at rest up to this one (0 when not at rest).
+inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_indirect, int height,
+                              int rest_frames) {
   AtrousPlan p;
+  p.direct_iterations =
+      direct_iterations_at_rest(s.atrous_iterations, s.rest_atrous_frames, rest_frames);
   p.indirect_iterations =
       spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, height) : 0;
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
-  p.both = p.indirect_iterations > 0 && !p.half && p.indirect_iterations == s.atrous_iterations;
+  p.both = p.indirect_iterations > 0 && !p.half && p.indirect_iterations == p.direct_iterations;
   return p;
 }
 

@@ -237,6 +237,14 @@ int indirect_iterations_for(int iterations, int height) {
   return std::clamp(scaled, 1, 8);
 }
 
+int direct_iterations_at_rest(int iterations, int fade_frames, int rest_frames) {
+  if (iterations <= 1 || fade_frames <= 0) return iterations;
+  int passes = iterations;
+  // (64-bit: doubling must not overflow for any frame count)
+  for (int64_t f = fade_frames; f <= rest_frames && passes > 1; f *= 2) --passes;
+  return passes;
+}
+
 namespace {
 
 // Runs `iterations` a-trous passes from `pass`'s inputs: over direct light alone, or over both
@@ -265,6 +273,7 @@ struct Denoiser::Buffers {
   bool valid = false;         // a previous run left a history of this size
   bool had_indirect = false;  // and it had indirect light
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
+  int rest_frames = 0;        // consecutive runs at rest up to the last one
   SurfaceBuffers surface, prev_surface;
   std::vector<HistoryTexel> history, prev_history;
   std::vector<float> prev_length;  // last run's history_length_
@@ -392,6 +401,9 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   params_.add_bool("spatial", &s.spatial, "edge-avoiding a-trous filter of the light");
   params_.add_int("atrous_iterations", &s.atrous_iterations, 0, 8,
                   "a-trous passes over direct light, with steps 1, 2, 4, ... pixels");
+  params_.add_int("rest_atrous_frames", &s.rest_atrous_frames, 0, 1 << 20,
+                  "frames at rest after which direct light gets one a-trous pass fewer, and one "
+                  "fewer per doubling (0: never)");
   params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
                   "a-trous passes over indirect light at 512 pixels of image height "
                   "(one more per doubling)");
@@ -495,6 +507,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
                   : temporal_pass<false, false>(temporal, b.row_short);
   }
   b.rest_valid = rest || state == HistoryState::kReset;
+  // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
+  // changed); saturates.
+  b.rest_frames = rest && !resized ? std::min(b.rest_frames, (1 << 30) - 1) + 1 : 0;
 
   ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
   ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
@@ -541,7 +556,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const denoise::AtrousPass base =
       denoise::atrous_base(s, b.surface.view(), b.depth_slope.data(), light_d, b.variance[0],
                            light_i, b.variance[1], w, h);
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames);
   const int indirect_iterations = plan.indirect_iterations;
   const bool half = plan.half, both = plan.both;
   if (spatial) {
@@ -553,7 +568,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       pass.indirect.out = out.rgb(kFilterIndirect);
       pass.indirect.out_var = out[kVarIndirect];
     };
-    const denoise::AtrousPass result = run_atrous(base, both, s.atrous_iterations, outputs);
+    const denoise::AtrousPass result = run_atrous(base, both, plan.direct_iterations, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }

@@ -33,6 +33,10 @@ struct DenoiseSettings {
   bool temporal = true;       // temporal accumulation through reprojection
   bool spatial = true;        // the a-trous filter
   int atrous_iterations = 3;  // a-trous passes over direct light (step 1, 2, 4, ...)
+  // After this many frames at rest, direct light gets one a-trous pass fewer, and one fewer per
+  // doubling after that, down to one (0: never). The mean of a long history needs less
+  // filtering (direct_iterations_at_rest).
+  int rest_atrous_frames = 32;
   // a-trous passes over indirect light at its resolution, for an image 512 pixels high; one
   // more per doubling of the height, one fewer per halving (indirect_iterations_for)
   int indirect_iterations = 5;
@@ -79,6 +83,12 @@ enum class DenoiseView {
 // one more per doubling, at least 1 (0 when `iterations` is 0) and at most 8. Photon blotches
 // cover a fixed part of the view, so the filter's reach follows the image.
 int indirect_iterations_for(int iterations, int height);
+
+// The a-trous passes over direct light after `rest_frames` frames at rest (0 when not at rest):
+// `iterations` below `fade_frames`, then one fewer per doubling of the frames, at least 1 (0 when
+// `iterations` is 0); all of them when `fade_frames` is 0. History-length-adaptive filtering, as
+// SVGF's descendants do: the accumulated mean's noise falls with the frames it averages.
+int direct_iterations_at_rest(int iterations, int fade_frames, int rest_frames);
 
 struct DenoiseFrame {
   const GBuffer& gbuffer;  // this frame's, with motion filled
