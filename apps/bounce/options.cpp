@@ -236,7 +236,10 @@ void apply_parameters(const FrameOptions& o, Technique& technique) {
   if (o.still)
     for (const auto& assignment : technique.still_defaults()) params.set_assignment(assignment);
   const std::vector<TechniqueOption> declared = technique.options();
-  for (const auto& [flag, text] : o.technique_options) {
+  for (const auto& option : o.technique_options) {
+    // Named copies, not a structured binding: clang 14 cannot capture one in the lambda.
+    const std::string& flag = option.first;
+    const std::string& text = option.second;
     if (text.empty()) continue;
     const auto it = std::find_if(declared.begin(), declared.end(),
                                  [&](const TechniqueOption& d) { return d.flag == flag; });

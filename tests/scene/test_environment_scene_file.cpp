@@ -52,7 +52,8 @@ TEST(EnvironmentSceneFile, SkyColourAndMapWithIntensityAndRotation) {
   EXPECT_EQ(scene.environment_map->width(), 8);
   // The light's power counts the map's mean: pi r^2 times 4 pi times radiance times mean.
   EXPECT_EQ(env.map_mean, scene.environment_map->mean());
-  const SceneView view = SceneData::from(scene).view();
+  const SceneData data = SceneData::from(scene);  // the view points into it
+  const SceneView view = data.view();
   EXPECT_EQ(view.environment, 1);
   EXPECT_EQ(view.environment_map.width, 8);
 }
@@ -99,7 +100,8 @@ TEST(EnvironmentSceneFile, AModelWithoutLightsGetsTheDefaultSkyAndAWarning) {
   ASSERT_EQ(scene.lights.size(), 1u);
   EXPECT_EQ(scene.lights[0].type, LightType::kEnvironment);
   ASSERT_NE(scene.environment_map, nullptr);
-  const SceneView view = SceneData::from(scene).view();
+  const SceneData data = SceneData::from(scene);  // the view points into it
+  const SceneView view = data.view();
   EXPECT_EQ(view.background(vec3(0, 1, 0)), vec3(kDefaultSkyRadiance));
   EXPECT_EQ(view.background(glm::normalize(vec3(1, 0.1f, 0))), vec3(kDefaultSkyRadiance));
   EXPECT_EQ(view.background(glm::normalize(vec3(0, -0.1f, -1))), vec3(kDefaultGroundRadiance));

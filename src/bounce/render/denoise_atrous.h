@@ -107,7 +107,8 @@ BOUNCE_HD inline AtrousRows<kRadius> atrous_rows(const AtrousPass& p, int y) {
 // How a pass treats tap columns outside the image: none (the interior of a row), masked (weight
 // 0; the read lands in the neighbouring row or in the padding the CPU's planes carry, so loads
 // stay contiguous and the border loops vectorise too), or clamped to the centre and masked (any
-// planes: a GPU pixel).
+// planes: a GPU pixel). Tap indices are signed: a masked tap left of the first row is a negative
+// offset into that padding, which an unsigned index would reach only by wrapping around.
 enum class Columns { kInside, kMasked, kClamped };
 
 // Tap column x + offset; `mask` becomes `outside` where the column is outside the image.
@@ -149,7 +150,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
     const float inv_distance = 1.0f / std::sqrt(float(Tap::dx * Tap::dx + Tap::dy * Tap::dy));
     float mask = rows.tap_mask[Tap::dy + kRadius];
     const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, mask, -1e4f);
-    const size_t q = rows.tap[Tap::dy + kRadius] + size_t(qx);
+    const ptrdiff_t q = ptrdiff_t(rows.tap[Tap::dy + kRadius]) + qx;
     const float cos_pq = nxp * p.surface.nx[q] + nyp * p.surface.ny[q] + nzp * p.surface.nz[q];
     geometry[size_t(decltype(k)::value) * stride] =
         log2_kernel + mask + normal_log2_weight(cos_pq, p.sigma_normal) -
@@ -161,7 +162,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
     constexpr float hk = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
     float mask = rows.near_mask[dy + 1];
     const int qx = tap_column<kColumns>(x, dx, p.width, mask, 0.0f);
-    const size_t q = rows.near[dy + 1] + size_t(qx);
+    const ptrdiff_t q = ptrdiff_t(rows.near[dy + 1]) + qx;
     const float wk = mask * (p.surface.depth[q] > 0.0f ? hk : 0.0f);
     vw += wk;
     vd += wk * p.direct.in_var[q];
@@ -194,7 +195,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light
     using Tap = AtrousTap<kRadius, decltype(k)::value>;
     float unused = 0.0f;
     const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, unused, 0.0f);
-    const size_t q = rows.tap[Tap::dy + kRadius] + size_t(qx);
+    const ptrdiff_t q = ptrdiff_t(rows.tap[Tap::dy + kRadius]) + qx;
     const float r = light.in.r[q], g = light.in.g[q], b = light.in.b[q];
     const float w = exp2_weight(geometry[size_t(decltype(k)::value) * stride] -
                                 std::fabs(luminance_of(r, g, b) - lp) * inv_phi);
