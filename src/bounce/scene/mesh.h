@@ -15,6 +15,27 @@ BOUNCE_HD inline vec3 triangle_normal_area2(vec3 p0, vec3 p1, vec3 p2) {
   return glm::cross(p1 - p0, p2 - p0);
 }
 
+// The unit normal of triangle (p0, p1, p2) by its winding, from edges (and then their cross
+// product) scaled to unit size first:
+// a triangle a few float steps wide (edges of 1e-38 m, which a malformed file can hold) has a
+// cross product that underflows to 0, and normalising that gives NaN, which then reaches rays.
+// A degenerate triangle (no ray can hit it) gets +z.
+BOUNCE_HD inline vec3 triangle_unit_normal(vec3 p0, vec3 p1, vec3 p2) {
+  vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const vec3 a1 = glm::abs(e1), a2 = glm::abs(e2);
+  const float largest =
+      glm::max(glm::max(glm::max(a1.x, a1.y), glm::max(a1.z, a2.x)), glm::max(a2.y, a2.z));
+  if (!(largest > 0.0f) || !(largest <= 3.0e38f)) return vec3(0.0f, 0.0f, 1.0f);
+  e1 /= largest;
+  e2 /= largest;
+  vec3 n = glm::cross(e1, e2);  // a sliver's can still be tiny: scaled again before its length
+  const vec3 a = glm::abs(n);
+  const float m = glm::max(glm::max(a.x, a.y), a.z);
+  if (!(m > 0.0f)) return vec3(0.0f, 0.0f, 1.0f);
+  n /= m;
+  return n / glm::length(n);
+}
+
 // A mesh's arrays as plain pointers for kernels (SceneView holds one per mesh).
 struct MeshView {
   const vec3* positions = nullptr;
