@@ -122,7 +122,7 @@ void LayeredHitBuffers::rasterize(const Scene& scene, std::span<const uint32_t> 
   std::vector<uint32_t> first_prim;
   uint32_t most_vertices = 0;  // the projection scratch each task needs
   Cutouts cutouts;             // alpha-masked holes leave no element
-  if (has_cutouts(scene)) cutouts.build(scene);
+  cutouts.build(scene);        // empty for a scene without cut-outs
   const CutoutView cutout_view = cutouts.view();
   slab.triangles = 0;
   for (uint32_t m : meshes) {
