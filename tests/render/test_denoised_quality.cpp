@@ -42,7 +42,10 @@ std::pair<DomainMetrics, DomainMetrics> raw_and_denoised(int frames) {
 
 TEST(DenoisedQuality, FirstFrameIsCloseToTheReference) {
   const auto [raw, denoised] = raw_and_denoised(1);
-  EXPECT_LT(denoised.mse, 0.5 * raw.mse);
+  // Measured 0.38 of the raw error with one photon pass in the first frame, 0.52 with tiled's
+  // three (restart_passes), which bring the raw error from 483 to 323 and the denoised from 185
+  // to 166.
+  EXPECT_LT(denoised.mse, 0.6 * raw.mse);
   EXPECT_GT(denoised.mssim, raw.mssim + 0.1);
 }
 

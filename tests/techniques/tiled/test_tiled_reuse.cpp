@@ -106,6 +106,8 @@ struct TiledRun {
     tiled->settings().lowres = 1;
     tiled->settings().motion_lowres = 1;
     tiled->settings().history_passes = history_passes;
+    // One pass per frame, also right after a restart (the boost has its own tests below).
+    tiled->settings().restart_passes = 1;
     renderer = std::make_unique<Renderer>(scene, *tracer, std::move(technique));
   }
   const Frame& render(const Camera& camera, bool accumulate = true) {
@@ -189,6 +191,95 @@ TEST(TiledReuse, CameraMoveGathersTheHeldPassesFreshFromTheNewView) {
   EXPECT_EQ(tiled.passes(), uint32_t(kHistory + 1));
   const float r5 = full * std::sqrt(area4 * (3 + alpha) / 4);
   EXPECT_NEAR(tiled.last_radius(), r5, 1e-6f * full);
+}
+
+// Passes first..last of the progressive sequence gathered together: the radius whose disc is the
+// mean of theirs.
+float mean_disc_radius(float full, float alpha, uint32_t first, uint32_t last) {
+  float area = 1.0f, sum = 0.0f;
+  for (uint32_t i = 1; i <= last; ++i) {
+    if (i >= first) sum += area;
+    area *= (float(i - 1) + alpha) / float(i);
+  }
+  return full * std::sqrt(sum / float(last - first + 1));
+}
+
+TEST(TiledReuse, FramesAfterARestartTraceExtraPassesGatheredTogether) {
+  TiledRun run(8);
+  run.tiled->settings().restart_passes = 3;
+  run.tiled->settings().restart_frames = 2;
+  const Camera a = run.scene.camera;
+  const float full = 0.03f * run.scene.bounds.diagonal(), alpha = run.tiled->settings().alpha;
+
+  // The first frame counts as after a long still period: frames 0 and 1 trace three passes each,
+  // then one per frame.
+  const Frame& f0 = run.render(a);
+  EXPECT_EQ(run.tiled->frame_passes(), 3u);
+  EXPECT_EQ(run.tiled->passes(), 3u);
+  ASSERT_EQ(run.tiled->history().size(), 3u);
+  EXPECT_NEAR(run.tiled->last_radius(), mean_disc_radius(full, alpha, 1, 3), 1e-6f * full);
+
+  // Frame 0's image is the three passes (samples 0, 2^28, 2^29) traced afresh and gathered by
+  // brute force together at that radius: the sum of their flux over three passes.
+  PhotonBuffer all;
+  PhotonTracer photon_tracer;
+  for (uint32_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(run.tiled->history().sample(k), k * 0x10000000u);
+    PhotonTraceSettings ts;
+    ts.paths = 600;
+    ts.pass = k * 0x10000000u;
+    PhotonBuffer pass;
+    photon_tracer.trace(run.scene, *run.tracer, ts, pass);
+    compute_photon_clearance(*run.tracer, full, pass);
+    ASSERT_EQ(pass.position, run.tiled->history().pass(k).position);
+    auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+    append(all.position, pass.position);
+    append(all.flux, pass.flux);
+    append(all.incident, pass.incident);
+    append(all.normal, pass.normal);
+    append(all.incident_dir, pass.incident_dir);
+    append(all.normal_dir, pass.normal_dir);
+    append(all.clearance, pass.clearance);
+    append(all.min_clearance, pass.min_clearance);
+  }
+  const Image fresh = brute_force_gather(f0.gbuffer, all, mean_disc_radius(full, alpha, 1, 3), 3);
+  size_t lit = 0;
+  for (size_t i = 0; i < fresh.pixel_count(); ++i) {
+    const vec3 expected = fresh.pixels()[i], got = f0.indirect.pixels()[i];
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(got[c], expected[c], 1e-5f * expected[c] + 1e-7f) << "pixel " << i;
+    lit += expected.x > 0.0f ? 1 : 0;
+  }
+  EXPECT_GT(lit, fresh.pixel_count() / 2);
+
+  run.render(a);  // frame 1: passes 4..6 at their mean disc
+  EXPECT_EQ(run.tiled->frame_passes(), 3u);
+  EXPECT_EQ(run.tiled->passes(), 6u);
+  EXPECT_NEAR(run.tiled->last_radius(), mean_disc_radius(full, alpha, 4, 6), 1e-6f * full);
+  run.render(a);  // frame 2: one pass, the seventh progressive one
+  EXPECT_EQ(run.tiled->frame_passes(), 1u);
+  EXPECT_EQ(run.tiled->passes(), 7u);
+  EXPECT_NEAR(run.tiled->last_radius(), mean_disc_radius(full, alpha, 7, 7), 1e-6f * full);
+
+  // A light change after the still period is boosted again...
+  SceneChange light;
+  light.lights = true;
+  run.renderer->scene_changed(light);
+  run.render(a);
+  EXPECT_EQ(run.tiled->frame_passes(), 3u);
+  EXPECT_EQ(run.tiled->passes(), 3u);
+  // ...but under continuous change (a restart every frame) no frame is, so an animation's frame
+  // time stays flat.
+  for (int k = 0; k < 4; ++k) {
+    run.renderer->scene_changed(light);
+    run.render(a);
+    EXPECT_EQ(run.tiled->frame_passes(), 1u) << k;
+    EXPECT_EQ(run.tiled->passes(), 1u) << k;
+  }
+  // Nor without accumulation, where every frame stands alone.
+  for (int k = 0; k < 6; ++k) run.render(a, false);
+  EXPECT_EQ(run.tiled->frame_passes(), 1u);
+  EXPECT_EQ(run.tiled->passes(), 1u);
 }
 
 TEST(TiledReuse, ChangesOfTheWorldRestartTheCameraDoesNot) {

@@ -32,14 +32,15 @@ size_t PhotonHistory::photon_count() const {
   return n;
 }
 
-void PhotonHistory::concatenate(PhotonBuffer& out) const {
-  bool clearance = count_ > 0;
-  std::vector<size_t> first(count_ + 1, 0);
-  for (size_t k = 0; k < count_; ++k) {
-    first[k + 1] = first[k] + pass(k).size();
-    clearance = clearance && pass(k).has_clearance();
+void PhotonHistory::concatenate(PhotonBuffer& out, size_t newest) const {
+  const size_t count = std::min(newest, count_), skip = count_ - count;
+  bool clearance = count > 0;
+  std::vector<size_t> first(count + 1, 0);
+  for (size_t k = 0; k < count; ++k) {
+    first[k + 1] = first[k] + pass(skip + k).size();
+    clearance = clearance && pass(skip + k).has_clearance();
   }
-  const size_t n = first[count_];
+  const size_t n = first[count];
   out.resize(n);
   out.incident_dir.resize(n);
   out.normal_dir.resize(n);
@@ -47,9 +48,9 @@ void PhotonHistory::concatenate(PhotonBuffer& out) const {
   out.min_clearance.resize(clearance ? n : 0);
   // A task per pass: each copies its arrays to its own range.
   parallel_for(
-      count_,
+      count,
       [&](size_t k) {
-        const PhotonBuffer& p = pass(k);
+        const PhotonBuffer& p = pass(skip + k);
         const size_t at = first[k];
         std::copy(p.position.begin(), p.position.end(), out.position.begin() + at);
         std::copy(p.flux.begin(), p.flux.end(), out.flux.begin() + at);

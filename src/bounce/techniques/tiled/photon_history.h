@@ -30,8 +30,10 @@ class PhotonHistory {
   size_t photon_count() const;
 
   // Every pass's photons in one buffer, oldest pass first, each pass in its own order: the union
-  // the gathers read after a camera move. Clearances are copied when every pass has them.
-  void concatenate(PhotonBuffer& out) const;
+  // the gathers read after a camera move. Clearances are copied when every pass has them. With
+  // `newest`, only the newest that many passes (a frame that traced several).
+  void concatenate(PhotonBuffer& out) const { concatenate(out, count_); }
+  void concatenate(PhotonBuffer& out, size_t newest) const;
 
  private:
   size_t slot(size_t k) const { return (first_ + k) % slots_.size(); }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -32,6 +33,10 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_float("alpha", &s.alpha, 0.01, 1.0, "radius reduction of passes at rest");
   params_.add_int("history_passes", &s.history_passes, 1, 64,
                   "photon passes kept and gathered again after a camera move");
+  params_.add_int("restart_passes", &s.restart_passes, 1, 16,
+                  "photon passes per frame right after a change ends a still period (1: off)");
+  params_.add_int("restart_frames", &s.restart_frames, 0, 64,
+                  "frames after such a change that trace restart_passes passes");
   add_edge_params(params_, s.edges);
   params_.add_int("seed", &s.seed, 0, 1 << 30, "photon sample seed");
 }
@@ -65,7 +70,9 @@ std::vector<TechniqueOption> TiledPhotonMapping::options() const {
 }
 
 std::vector<std::string> TiledPhotonMapping::still_defaults() const {
-  return {"photons=20000"};  // a still affords ten times the real-time frame's photons per pass
+  // A still affords ten times the real-time frame's photons per pass, and each of its passes is
+  // one pass (no boost after the first frame's restart).
+  return {"photons=20000", "restart_passes=1"};
 }
 
 uint64_t TiledPhotonMapping::memory_estimate(const Scene& scene) const {
@@ -88,13 +95,19 @@ float TiledPhotonMapping::progressive_radius(float full_radius, float alpha, uin
 }
 
 float TiledPhotonMapping::union_radius(float full_radius, float alpha, uint32_t passes) {
+  return range_radius(full_radius, alpha, 1, passes);
+}
+
+float TiledPhotonMapping::range_radius(float full_radius, float alpha, uint32_t first,
+                                       uint32_t last) {
   double sum = 0.0;
   float radius2 = full_radius * full_radius;
-  for (uint32_t i = 1; i <= passes; ++i) {
-    sum += radius2;
+  for (uint32_t i = 1; i <= last; ++i) {
+    if (i >= first) sum += radius2;
     radius2 *= (float(i - 1) + alpha) / float(i);
   }
-  return float(std::sqrt(sum / double(std::max(passes, 1u))));
+  const uint32_t count = last >= first ? last - first + 1 : 1;
+  return float(std::sqrt(sum / double(count)));
 }
 
 TiledGatherView TiledPhotonMapping::gather_view(const GBuffer& g, const PhotonBuffer& photons,
@@ -138,51 +151,68 @@ void TiledPhotonMapping::prepare(const PrepareContext& c) {
   full_radius_ = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
   const size_t capacity = size_t(settings_.history_passes);
   if (!c.accumulate || c.change.world_changed() || history_.capacity() != capacity) {
+    // A restart after a still period (the last one restart_frames or more frames ago) starts
+    // the boost; under continuous change no frame gets it.
+    const uint32_t boost_frames = uint32_t(settings_.restart_frames);
+    boosted_frames_left_ = c.accumulate && frames_since_restart_ >= boost_frames ? boost_frames : 0;
+    frames_since_restart_ = 0;
     history_.reset(capacity);
     passes_ = 0;
   }
-  // The sample pattern follows the frame index, so that frames are independent without
-  // accumulation and no two passes of an estimate share photons.
-  PhotonBuffer& photons = history_.add(c.frame_index);
-  {
-    ScopedStage stage(c.times, "prepare/photon trace");
-    PhotonTraceSettings ts;
-    ts.paths = uint32_t(settings_.photons);
-    ts.max_bounces = settings_.bounces;
-    ts.seed = uint32_t(settings_.seed);
-    ts.pass = c.frame_index;
-    const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons);
-    c.counters.photon_paths += stats.paths;
-    c.counters.photons_stored += stats.stored;
-    c.counters.rays += stats.rays;
+  if (frames_since_restart_ < UINT32_MAX) ++frames_since_restart_;
+  frame_passes_ = 1;
+  if (boosted_frames_left_ > 0) {
+    --boosted_frames_left_;
+    frame_passes_ = uint32_t(std::clamp<size_t>(size_t(settings_.restart_passes), 1, capacity));
   }
-  if (settings_.leak_guard) {
-    // Clearances out to the full radius serve every later, smaller radius: a gather within
-    // radius r only asks whether the free distance reaches below r.
-    ScopedStage stage(c.times, "prepare/clearance");
-    c.counters.rays += compute_photon_clearance(c.tracer, full_radius_, photons);
-  } else {
-    photons.clearance.clear();
-    photons.min_clearance.clear();
+  for (uint32_t k = 0; k < frame_passes_; ++k) {
+    // The sample pattern follows the frame index, so that frames are independent without
+    // accumulation and no two passes of an estimate share photons; a boosted frame's extra
+    // passes take samples far from any frame's.
+    PhotonBuffer& photons = history_.add(c.frame_index + k * 0x10000000u);
+    {
+      ScopedStage stage(c.times, "prepare/photon trace");
+      PhotonTraceSettings ts;
+      ts.paths = uint32_t(settings_.photons);
+      ts.max_bounces = settings_.bounces;
+      ts.seed = uint32_t(settings_.seed);
+      ts.pass = c.frame_index + k * 0x10000000u;
+      const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons);
+      c.counters.photon_paths += stats.paths;
+      c.counters.photons_stored += stats.stored;
+      c.counters.rays += stats.rays;
+    }
+    if (settings_.leak_guard) {
+      // Clearances out to the full radius serve every later, smaller radius: a gather within
+      // radius r only asks whether the free distance reaches below r.
+      ScopedStage stage(c.times, "prepare/clearance");
+      c.counters.rays += compute_photon_clearance(c.tracer, full_radius_, photons);
+    } else {
+      photons.clearance.clear();
+      photons.min_clearance.clear();
+    }
   }
 }
 
 void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
-  // The per-pixel sum is rebuilt from the photons after a restart or a camera move (new pixels,
-  // same world), and grows by the new pass otherwise.
-  const bool rebuild = passes_ == 0 || c.change.camera || accumulated_.width() != out.width() ||
-                       accumulated_.height() != out.height();
+  // After a camera move (new pixels, same world) the per-pixel sum is rebuilt from every pass
+  // kept; after a restart it is this frame's passes; otherwise it grows by this frame's passes.
+  const bool restart = passes_ == 0;
+  const bool moved = !restart && (c.change.camera || accumulated_.width() != out.width() ||
+                                  accumulated_.height() != out.height());
   if (pass_estimate_.width() != out.width() || pass_estimate_.height() != out.height())
     pass_estimate_ = Image(out.width(), out.height());
-  passes_ = rebuild ? uint32_t(history_.size()) : passes_ + 1;
+  const uint32_t fresh = std::min<uint32_t>(frame_passes_, uint32_t(history_.size()));
+  const uint32_t before = restart ? 0 : passes_;
+  passes_ = moved ? uint32_t(history_.size()) : before + fresh;
 
   // Progressive photon mapping as the average of independent passes whose radius shrinks
-  // (Knaus and Zwicker 2011). Kept passes gathered together share one radius, and their summed
-  // flux gives the sum of their estimates.
+  // (Knaus and Zwicker 2011). Passes gathered together share one radius, and their summed flux
+  // gives the sum of their estimates.
   GatherPlan plan{progressive_radius(full_radius_, settings_.alpha, passes_), settings_.lowres,
                   settings_.gather != 0};
   const PhotonBuffer* photons = &history_.newest();
-  if (rebuild && passes_ > 1) {
+  if (moved && passes_ > 1) {
     ScopedStage stage(c.times, "indirect/photon union");
     history_.concatenate(union_);
     photons = &union_;
@@ -190,12 +220,18 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
     // costs next to nothing, keep the frame's cost bounded (README.md, "Photons kept across
     // camera moves").
     plan = {union_radius(full_radius_, settings_.alpha, passes_), settings_.motion_lowres, true};
+  } else if (fresh > 1) {
+    // A boosted frame: its passes gathered together at the mean of their discs.
+    ScopedStage stage(c.times, "indirect/photon union");
+    history_.concatenate(union_, fresh);
+    photons = &union_;
+    plan.radius = range_radius(full_radius_, settings_.alpha, before + 1, passes_);
   }
   last_radius_ = plan.radius;
   estimate(c, *photons, plan, pass_estimate_);
 
   const float inv_passes = 1.0f / float(passes_);
-  if (rebuild) {
+  if (restart || moved) {
     std::swap(accumulated_, pass_estimate_);
     parallel_for(
         out.pixel_count(),

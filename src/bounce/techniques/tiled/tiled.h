@@ -28,6 +28,12 @@ struct TiledSettings {
   bool leak_guard = true;     // per-photon clearance rays against light through thin walls
   float alpha = 2.0f / 3.0f;  // radius reduction of passes at rest (Knaus and Zwicker 2011)
   int history_passes = 8;     // photon passes kept and gathered again after a camera move
+  // After a restart that ends a still period (a light or object moved once), the first
+  // restart_frames frames trace restart_passes passes each, so the image settles in fewer frames
+  // (README.md, "Settling after a change"). Under continuous change every frame restarts and
+  // none is boosted, so an animation's frame time stays flat.
+  int restart_passes = 3;
+  int restart_frames = 3;
   EdgeSettings edges;  // which pixels a low-resolution estimate re-estimates at full resolution
   int seed = 0;
 };
@@ -64,6 +70,10 @@ class TiledPhotonMapping final : public Technique {
   // progressive discs, so the union is at least as good as the average of their estimates
   // (README.md, "Photons kept across camera moves").
   static float union_radius(float full_radius, float alpha, uint32_t passes);
+  // The same for passes first..last (1-based) gathered together: this frame's passes.
+  static float range_radius(float full_radius, float alpha, uint32_t first, uint32_t last);
+  // Photon passes this frame traced (restart_passes in the frames after a restart, else 1).
+  uint32_t frame_passes() const { return frame_passes_; }
   // The full radius (of the first pass) in the last frame's scene.
   float full_radius() const { return full_radius_; }
   // The passes kept for reuse; the newest is this frame's.
@@ -94,8 +104,13 @@ class TiledPhotonMapping final : public Technique {
   PhotonHashGrid grid_;
   LowResBuffers low_;
   Image pass_estimate_;
-  Image accumulated_;    // the sum of the passes' estimates
-  uint32_t passes_ = 0;  // in accumulated_; 0: restart at the next frame
+  Image accumulated_;          // the sum of the passes' estimates
+  uint32_t passes_ = 0;        // in accumulated_; 0: restart at the next frame
+  uint32_t frame_passes_ = 1;  // traced by this frame's prepare, the newest in history_
+  // Frames since the last restart (the first frame counts as after a long still period), and
+  // how many more frames trace restart_passes passes.
+  uint32_t frames_since_restart_ = UINT32_MAX;
+  uint32_t boosted_frames_left_ = 0;
   float full_radius_ = 0.0f;
   float last_radius_ = 0.0f;
   float diagonal_ = 1.0f;
