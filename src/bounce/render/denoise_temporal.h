@@ -98,9 +98,10 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
     const int qx = x0 + dx, qy = y0 + dy;
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
     const size_t q = inside ? size_t(qy) * size_t(p.prev_width) + size_t(qx) : 0;
-    const bool same = (p.prev_surface.object[q] == object) &
-                      (std::fabs(p.prev_surface.depth[q] - z) <= dz_max) &
-                      (glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance);
+    const bool same_object = p.prev_surface.object[q] == object;
+    const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= dz_max;
+    const bool near_normal = glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance;
+    const bool same = same_object & near_depth & near_normal;
     const float w = (inside & same) ? (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy) : 0.0f;
     weight += w;
     r.h.add(w, p.prev[q]);

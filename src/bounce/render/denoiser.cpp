@@ -82,11 +82,11 @@ BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checke
                                     const Interior& interior) {
   const int x0 = std::min(border, width);
   const int x1 = std::max(width - border, x0);
-#pragma GCC ivdep
+  BOUNCE_IVDEP
   for (int x = 0; x < x0; ++x) checked(x);
-#pragma GCC ivdep
+  BOUNCE_IVDEP
   for (int x = x0; x < x1; ++x) interior(x);
-#pragma GCC ivdep
+  BOUNCE_IVDEP
   for (int x = x1; x < width; ++x) checked(x);
 }
 
@@ -106,7 +106,7 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
     const float* v[10];
     for (int c = 0; c < 10; ++c) v[c] = row.v[c];
     uint32_t any_short = 0;  // (a bool reduction would not vectorise)
-#pragma GCC ivdep
+    BOUNCE_IVDEP
     for (int x = 0; x < p.width; ++x)
       any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
           p, first + size_t(x), denoise::load_reprojected(v, x)));
@@ -119,7 +119,7 @@ void remodulate_pass(const denoise::RemodulatePass& pass, int height, int width)
   for_rows(height, [&](int y) {
     const denoise::RemodulatePass p = pass;
     const size_t first = size_t(y) * size_t(width);
-#pragma GCC ivdep
+    BOUNCE_IVDEP
     for (size_t i = first; i < first + size_t(width); ++i)
       denoise::remodulate_pixel<kIndirect, kRest>(p, i);
   });
@@ -203,7 +203,7 @@ void box_row(const denoise::BoxPass& p, int y) {
   for (int k = 0; k < 5; ++k) {
     const float* m = moments.data() + size_t(k) * n;
     float* out = p.sums[k] + row;
-#pragma GCC ivdep
+    BOUNCE_IVDEP
     for (int x = 0; x < p.width; ++x) {
       float s = 0.0f;
       for (int d = 0; d <= 2 * r; ++d) s += m[x + d];
@@ -218,7 +218,7 @@ void box_column(const denoise::VariancePass& p, int y) {
   constexpr int r = denoise::kVarianceBox;
   const int y0 = std::max(y - r, 0), y1 = std::min(y + r, p.height - 1);
   const size_t w = size_t(p.width), row = size_t(y) * w;
-#pragma GCC ivdep
+  BOUNCE_IVDEP
   for (size_t x = 0; x < w; ++x) {
     float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     for (int qy = y0; qy <= y1; ++qy)
@@ -354,7 +354,7 @@ ConstRgbPlanes Denoiser::Buffers::filter_half_indirect(const denoise::AtrousPass
   for_rows(hh, [&](int y) {
     // Only the last texel of a row of odd width has a block column outside the image.
     const int interior = w % 2 == 0 ? hw : hw - 1;
-#pragma GCC ivdep
+    BOUNCE_IVDEP
     for (int x = 0; x < interior; ++x) denoise::downsample_pixel<false>(down, x, y);
     for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true>(down, x, y);
   });
