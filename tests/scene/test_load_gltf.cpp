@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <tiny_gltf.h>
 
 #include "bounce/core/color.h"
@@ -419,6 +420,26 @@ TEST(LoadGltf, TruncatedGlbIsAnError) {
     const std::string message = error_of([&] { load_scene(path); });
     EXPECT_TRUE(contains(message, path)) << cut << ": " << message;
   }
+}
+
+TEST(LoadGltf, GlbChunkLongerThanTheFileIsRefusedBeforeAllocating) {
+  // Found by fuzz_glb: a 2 KB file whose JSON chunk claims 1 GiB was zero-filled into a 1 GiB
+  // string before the read failed (3 s and 1 GB per load). The claim is now checked against the
+  // file's size first.
+  TempDir dir;
+  std::string full = scene_test::read_bytes(write(triangle_model(), dir, "full.glb"));
+  ASSERT_GT(full.size(), 40u);
+  const uint32_t huge = 1u << 30;
+  std::memcpy(&full[12], &huge, 4);  // the first chunk's length
+  const std::string path = dir.write("huge-chunk.glb", full);
+  struct rusage before {};
+  getrusage(RUSAGE_SELF, &before);
+  const std::string message = error_of([&] { load_scene(path); });
+  struct rusage after {};
+  getrusage(RUSAGE_SELF, &after);
+  EXPECT_TRUE(contains(message, path)) << message;
+  // The process's peak resident memory (KiB) grew by far less than the claimed gigabyte.
+  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 256L * 1024) << message;
 }
 
 TEST(LoadGltf, BadJsonIsAnError) {
