@@ -423,7 +423,7 @@ TEST(LoadGltf, TruncatedGlbIsAnError) {
 }
 
 TEST(LoadGltf, GlbChunkLongerThanTheFileIsRefusedBeforeAllocating) {
-  // Found by fuzz_glb: a 2 KB file whose JSON chunk claims 1 GiB was zero-filled into a 1 GiB
+  // Found by fuzz_glb: a 1 KB file whose JSON chunk claims 1 GiB was zero-filled into a 1 GiB
   // string before the read failed (3 s and 1 GB per load). The claim is now checked against the
   // file's size first.
   TempDir dir;

@@ -41,7 +41,7 @@ std::string json_text(const std::string& path) {
   uint32_t chunk_length = 0;
   std::memcpy(&chunk_length, header + 12, 4);
   // A chunk longer than the file is refused before anything is allocated for it (a fuzzed
-  // 2 KB file claiming a 1 GiB chunk took 3 s and 1 GB to zero-fill before the read failed).
+  // 1 KB file claiming a 1 GiB chunk took 3 s and 1 GB to zero-fill before the read failed).
   in.seekg(0, std::ios::end);
   const std::streamoff file_size = in.tellg();
   in.seekg(20);
