@@ -58,9 +58,14 @@ for t in "${targets[@]}"; do
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=1048576 \
       -print_final_stats=1 -artifact_prefix="$run/artifacts/$t-" "${runs[@]}" >"$log" 2>&1; then
     echo "fuzz_$t FAILED: see $log and $run/artifacts" >&2
-    grep -E "ERROR|SUMMARY|Test unit written" "$log" | head -5 >&2 || true
+    grep -a -E "ERROR|SUMMARY|Test unit written" "$log" | head -5 >&2 || true
     failed=1
   fi
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb|cov: " "$log" | tail -3
+  grep -a -E "stat::number_of_executed_units|stat::peak_rss_mb|cov: " "$log" | tail -3
+  # Inputs slower than 10 s are saved but do not stop the run (a loaded machine slows any of
+  # them): named here so that they are looked at.
+  for slow in "$run/artifacts/$t-slow-unit-"*; do
+    if [[ -e $slow ]]; then echo "fuzz_$t: a slow input was saved: $slow (time it alone)" >&2; fi
+  done
 done
 exit $failed
