@@ -115,6 +115,30 @@ struct TiledRun {
   }
 };
 
+// Pass `sample` of the run's photons (its 600 paths) traced afresh outside the technique, with
+// clearances out to `full_radius`.
+PhotonBuffer traced_pass(const TiledRun& run, uint32_t sample, float full_radius) {
+  PhotonTraceSettings ts;
+  ts.paths = 600;
+  ts.pass = sample;
+  PhotonBuffer pass;
+  PhotonTracer().trace(run.scene, *run.tracer, ts, pass);
+  compute_photon_clearance(*run.tracer, full_radius, pass);
+  return pass;
+}
+
+void append_pass(PhotonBuffer& all, const PhotonBuffer& pass) {
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(all.position, pass.position);
+  append(all.flux, pass.flux);
+  append(all.incident, pass.incident);
+  append(all.normal, pass.normal);
+  append(all.incident_dir, pass.incident_dir);
+  append(all.normal_dir, pass.normal_dir);
+  append(all.clearance, pass.clearance);
+  append(all.min_clearance, pass.min_clearance);
+}
+
 // The indirect radiance of every pixel of `g` from `photons`, summed photon by photon over all of
 // them (no tiles) at `radius`, divided by `passes`.
 Image brute_force_gather(const GBuffer& g, const PhotonBuffer& photons, float radius,
@@ -156,25 +180,11 @@ TEST(TiledReuse, CameraMoveGathersTheHeldPassesFreshFromTheNewView) {
 
   // The same passes traced afresh, outside the technique, and gathered by brute force from B.
   PhotonBuffer all;
-  PhotonTracer photon_tracer;
   for (uint32_t frame = 3; frame <= 6; ++frame) {
     EXPECT_EQ(tiled.history().sample(frame - 3), frame);
-    PhotonTraceSettings ts;
-    ts.paths = 600;
-    ts.pass = frame;
-    PhotonBuffer pass;
-    photon_tracer.trace(run.scene, *run.tracer, ts, pass);
-    compute_photon_clearance(*run.tracer, full, pass);
+    const PhotonBuffer pass = traced_pass(run, frame, full);
     ASSERT_EQ(pass.position, tiled.history().pass(frame - 3).position);
-    auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
-    append(all.position, pass.position);
-    append(all.flux, pass.flux);
-    append(all.incident, pass.incident);
-    append(all.normal, pass.normal);
-    append(all.incident_dir, pass.incident_dir);
-    append(all.normal_dir, pass.normal_dir);
-    append(all.clearance, pass.clearance);
-    append(all.min_clearance, pass.min_clearance);
+    append_pass(all, pass);
   }
   const Image fresh = brute_force_gather(f.gbuffer, all, r_union, kHistory);
   size_t lit = 0;
@@ -222,25 +232,11 @@ TEST(TiledReuse, FramesAfterARestartTraceExtraPassesGatheredTogether) {
   // Frame 0's image is the three passes (samples 0, 2^28, 2^29) traced afresh and gathered by
   // brute force together at that radius: the sum of their flux over three passes.
   PhotonBuffer all;
-  PhotonTracer photon_tracer;
   for (uint32_t k = 0; k < 3; ++k) {
     EXPECT_EQ(run.tiled->history().sample(k), k * 0x10000000u);
-    PhotonTraceSettings ts;
-    ts.paths = 600;
-    ts.pass = k * 0x10000000u;
-    PhotonBuffer pass;
-    photon_tracer.trace(run.scene, *run.tracer, ts, pass);
-    compute_photon_clearance(*run.tracer, full, pass);
+    const PhotonBuffer pass = traced_pass(run, k * 0x10000000u, full);
     ASSERT_EQ(pass.position, run.tiled->history().pass(k).position);
-    auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
-    append(all.position, pass.position);
-    append(all.flux, pass.flux);
-    append(all.incident, pass.incident);
-    append(all.normal, pass.normal);
-    append(all.incident_dir, pass.incident_dir);
-    append(all.normal_dir, pass.normal_dir);
-    append(all.clearance, pass.clearance);
-    append(all.min_clearance, pass.min_clearance);
+    append_pass(all, pass);
   }
   const Image fresh = brute_force_gather(f0.gbuffer, all, mean_disc_radius(full, alpha, 1, 3), 3);
   size_t lit = 0;
