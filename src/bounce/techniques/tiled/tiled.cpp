@@ -169,14 +169,15 @@ void TiledPhotonMapping::prepare(const PrepareContext& c) {
     // The sample pattern follows the frame index, so that frames are independent without
     // accumulation and no two passes of an estimate share photons; a boosted frame's extra
     // passes take samples far from any frame's.
-    PhotonBuffer& photons = history_.add(c.frame_index + k * 0x10000000u);
+    const uint32_t sample = c.frame_index + k * 0x10000000u;
+    PhotonBuffer& photons = history_.add(sample);
     {
       ScopedStage stage(c.times, "prepare/photon trace");
       PhotonTraceSettings ts;
       ts.paths = uint32_t(settings_.photons);
       ts.max_bounces = settings_.bounces;
       ts.seed = uint32_t(settings_.seed);
-      ts.pass = c.frame_index + k * 0x10000000u;
+      ts.pass = sample;
       const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons);
       c.counters.photon_paths += stats.paths;
       c.counters.photons_stored += stats.stored;
@@ -202,7 +203,7 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
                                   accumulated_.height() != out.height());
   if (pass_estimate_.width() != out.width() || pass_estimate_.height() != out.height())
     pass_estimate_ = Image(out.width(), out.height());
-  const uint32_t fresh = std::min<uint32_t>(frame_passes_, uint32_t(history_.size()));
+  const uint32_t fresh = frame_passes_;  // prepare keeps it within the ring's capacity
   const uint32_t before = restart ? 0 : passes_;
   passes_ = moved ? uint32_t(history_.size()) : before + fresh;
 
