@@ -22,7 +22,7 @@ namespace {
 
 struct BenchOptions {
   // Real-time frames: one light sample per pixel per frame unless asked otherwise.
-  BenchOptions() { frame.light_samples = 1; }
+  BenchOptions() : frame(realtime_frame_options()) {}
   FrameOptions frame;
   int frames = 100;
   int warmup = 10;

@@ -9,9 +9,9 @@ namespace bounce::app {
 
 void add_view_command(CLI::App& app) {
   auto options = std::make_shared<ViewOptions>();
+  options->frame = realtime_frame_options();  // frames average at rest
   options->frame.width = 960;
   options->frame.height = 540;
-  options->frame.light_samples = 1;  // frames average at rest
   CLI::App* cmd = app.add_subcommand(
       "view",
       "Interactive viewer (no SCENE: the Cornell box). Keys: WASD move, Q/E down/up, shift "

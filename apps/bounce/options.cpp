@@ -53,6 +53,7 @@ FrameSettings FrameOptions::settings() const {
   s.width = width;
   s.height = height;
   s.light_samples = light_samples;
+  s.one_shadow_ray = shadow_rays == "one" || (shadow_rays == "auto" && light_samples == 1);
   s.exposure_ev = exposure_ev;
   s.seed = seed;
   s.denoise = denoise;
@@ -127,6 +128,13 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
       .add_option("--light-samples", o.light_samples,
                   "Stratified samples per area light per pixel per frame")
       ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  command
+      .add_option("--shadow-rays", o.shadow_rays,
+                  "Shadow rays per pixel: all (one per light sample), one (for all its light "
+                  "samples, chosen by their unshadowed light: noise only where the lights' "
+                  "shadows differ), or auto (one when --light-samples is 1)")
+      ->check(CLI::IsMember({"auto", "all", "one"}))
       ->capture_default_str();
   command.add_option("--exposure", o.exposure_ev, "Exposure in stops for PNG output")
       ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))

@@ -19,6 +19,9 @@ struct FrameOptions {
   int width = 512;
   int height = 512;
   int light_samples = 16;
+  // --shadow-rays: "all" (one per light sample), "one" (one per pixel for all its samples,
+  // chosen by unshadowed contribution) or "auto" (one with a single light sample per light).
+  std::string shadow_rays = "auto";
   float exposure_ev = 0.0f;
   uint32_t seed = 0;
   int threads = 0;

@@ -35,6 +35,7 @@ TEST(Cli, BadArgumentsAreRejectedWithAMessage) {
       {"render --width -5", "width"},
       {"render --width abc", "width"},
       {"render --light-samples 0", "light-samples"},
+      {"render -W 8 -H 8 --shadow-rays some", "shadow-rays"},
       {"render --technique nonsense -W 8 -H 8", "unknown technique 'nonsense'"},
       {"render --param nope=1 -W 8 -H 8", "unknown parameter 'nope'"},
       {"render --out out.bmp -W 8 -H 8", "out.bmp"},
@@ -138,6 +139,29 @@ TEST(Cli, InfoAndBenchReportTheScene) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("stddev"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("primary rays/s"), std::string::npos) << r.output;
+}
+
+// --shadow-rays: one ray per light sample (all), one per pixel (one), or one exactly when there is
+// one light sample (auto, the default), as bench counts them.
+TEST(Cli, ShadowRaysOptionSetsTheRaysPerPixel) {
+  auto rays_per_frame = [](const std::string& options) {
+    const Result r = run("bench cornell -W 16 -H 16 --frames 1 --warmup 0 " + options);
+    EXPECT_EQ(r.status, 0) << r.output;
+    const size_t end = r.output.find(" shadow rays per frame");
+    const size_t start = r.output.rfind('(', end);
+    if (end == std::string::npos || start == std::string::npos) return -1L;
+    return std::stol(r.output.substr(start + 1, end - start - 1));
+  };
+  const long one_sample = rays_per_frame(""), four_all = rays_per_frame("--light-samples 4"),
+             four_one = rays_per_frame("--light-samples 4 --shadow-rays one"),
+             one_all = rays_per_frame("--shadow-rays all");
+  ASSERT_GT(one_sample, 0);
+  EXPECT_LE(one_sample, 16 * 16);
+  EXPECT_EQ(one_all, one_sample);  // a single sample is traced either way
+  EXPECT_GT(four_all, 3 * one_sample);
+  // At most one per pixel (a pixel whose single sample fell behind the light may find one of four).
+  EXPECT_LE(four_one, 16 * 16);
+  EXPECT_GE(four_one, one_sample);
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // Direct light in scenes with many lights (direct_pixel_resampled): one shadow ray per light
 // sample whatever the light count, unbiased against the loop over every light, and less noisy
-// than picking lights by power alone.
+// than picking lights by power alone. And one shadow ray per pixel for all its light samples
+// (DirectSettings::one_shadow_ray, ShadowSelection): unbiased, and exact with a single sample.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "bounce/core/color.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/direct.h"
 #include "bounce/render/gbuffer.h"
@@ -158,6 +160,74 @@ TEST(ManyLights, CandidatesWeighedByContributionBeatPickingByPower) {
     error_resampled += rms_error(floor_.direct(resampled(8, f)), exact);
   }
   EXPECT_LT(error_resampled, 0.75 * error_power);
+}
+
+// The floor with a 2 x 2 m board 0.4 m above its middle: lights beside or above the board shade
+// different parts of the floor, so a pixel's samples disagree about visibility there.
+Scene many_lights_over_a_board() {
+  Scene s = many_lights();
+  s.meshes.push_back(
+      scene_test::quad_mesh("board", vec3(-1, 0.4f, -1), vec3(2, 0, 0), vec3(0, 0, 2), 0));
+  s.finalize();
+  return s;
+}
+
+DirectSettings one_ray(DirectSettings s) {
+  s.one_shadow_ray = true;
+  return s;
+}
+
+TEST(ShadowSelection, OneShadowRayPerPixelWhateverTheLights) {
+  const LitFloor floor_(many_lights_over_a_board());
+  uint64_t every = 0, one = 0;
+  floor_.direct(looped(), &every);
+  floor_.direct(one_ray(looped()), &one);
+  EXPECT_LE(one, uint64_t(kSize * kSize));
+  EXPECT_GT(every, 20 * one);
+}
+
+TEST(ShadowSelection, ASingleSampleIsTracedUnchanged) {
+  Scene one_light = many_lights_over_a_board();
+  one_light.lights = {one_light.lights[1]};  // a point light above the floor
+  one_light.finalize();
+  const LitFloor floor_(std::move(one_light));
+  for (uint32_t f = 0; f < 4; ++f) {
+    const Image every = floor_.direct(looped(f)), one = floor_.direct(one_ray(looped(f)));
+    for (size_t i = 0; i < every.pixel_count(); ++i)
+      ASSERT_EQ(one.pixels()[i], every.pixels()[i]) << "pixel " << i << ", frame " << f;
+  }
+}
+
+// Frames of one ray per pixel average to the image of a ray per light, shadows included, both
+// with the loop over every light and with resampled light samples.
+TEST(ShadowSelection, ConvergesToARayPerSample) {
+  const LitFloor floor_(many_lights_over_a_board());
+  const Image exact = floor_.direct(looped());
+  constexpr int kFrames = 512;
+  Image mean(kSize, kSize, vec3(0.0f));
+  for (uint32_t f = 0; f < kFrames; ++f) mean += floor_.direct(one_ray(looped(f)));
+  mean *= 1.0f / float(kFrames);
+  for (int by = 0; by < kSize; by += 8)
+    for (int bx = 0; bx < kSize; bx += 8) {
+      vec3 e(0.0f), m(0.0f);
+      for (int y = by; y < by + 8; ++y)
+        for (int x = bx; x < bx + 8; ++x) {
+          e += exact.at(x, y);
+          m += mean.at(x, y);
+        }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], 0.03f * e[c]) << bx << "," << by;
+    }
+  // The board shades part of the floor (pixels darker than on the bare floor): the blocks above
+  // hold pixels whose samples disagree about visibility.
+  const LitFloor bare;
+  const Image open = bare.direct(looped());
+  int shaded = 0;
+  for (size_t i = 0; i < open.pixel_count(); ++i)
+    shaded += luminance(exact.pixels()[i]) < 0.9f * luminance(open.pixels()[i]) ? 1 : 0;
+  EXPECT_GT(shaded, 50);
+  // A single frame is not the exact image: it traces one of each pixel's rays.
+  const Image frame = floor_.direct(one_ray(looped(0)));
+  EXPECT_GT(rms_error(frame, exact), 0.0);
 }
 
 }  // namespace

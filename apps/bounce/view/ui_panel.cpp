@@ -186,6 +186,16 @@ void draw_panel(ViewSession& session, PanelState& state) {
     denoiser_section(session);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("exposure", &session.exposure(), -8.0f, 8.0f, "%.1f EV");
+    static constexpr const char* kShadowRays[] = {"auto", "all", "one"};
+    int shadow_rays = 0;
+    for (int k = 0; k < 3; ++k)
+      if (session.shadow_rays() == kShadowRays[k]) shadow_rays = k;
+    if (ImGui::Combo("shadow rays", &shadow_rays, kShadowRays, 3))
+      session.shadow_rays() = kShadowRays[shadow_rays];
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "all: one per light sample; one: one per pixel, for the light sample chosen by its "
+          "unshadowed light; auto: one with one light sample");
     float target = float(session.scaler().settings().target_ms);
     if (ImGui::SliderFloat("target ms", &target, 0.0f, 200.0f, "%.0f"))
       session.scaler().settings().target_ms = target;

@@ -57,6 +57,8 @@ class ViewSession {
   // Moves mesh `index` by `offset` (the panel's object list).
   void move_mesh(uint32_t index, vec3 offset);
   float& exposure() { return exposure_; }
+  // --shadow-rays: auto, all or one (FrameOptions::shadow_rays), from the panel too.
+  std::string& shadow_rays() { return options_.frame.shadow_rays; }
   // Temporal reuse and denoising, its parameters, and what the window shows (debug views).
   bool& denoise() { return denoise_; }
   Denoiser& denoiser() { return renderer_->denoiser(); }

@@ -33,10 +33,7 @@ __global__ void check_direct(SceneView scene, LightPickerView lights, TraceView 
   auto shadow = [&](const Ray& ray, vec3 radiance) {
     if (!trace.occluded(ray)) sum += radiance;
   };
-  if (resamples_lights(lights, settings))
-    direct_pixel_resampled(scene, lights, g, i, eye, settings, shadow);
-  else
-    direct_pixel(scene, g, i, eye, settings, shadow);
+  direct_light_pixel(scene, lights, g, i, eye, settings, shadow);
   out[i] = sum;
 }
 

@@ -148,8 +148,8 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   {
     const ConstGBufferView read = g;
     const LightPickerView lights = scene_.lights();
-    const DirectSettings ds{settings.light_samples, in.frame_index, settings.seed};
-    const bool resampled = resamples_lights(lights, ds);
+    DirectSettings ds{settings.light_samples, in.frame_index, settings.seed};
+    ds.one_shadow_ray = settings.one_shadow_ray;
     vec3* out = direct_.data();
     uint32_t* counts = shadow_rays_.data();
     const vec3 eye = rays.origin;
@@ -160,10 +160,7 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
         ++traced;
         if (!tv.occluded(ray)) sum += radiance;
       };
-      if (resampled)
-        direct_pixel_resampled(sv, lights, read, i, eye, ds, shadow);
-      else
-        direct_pixel(sv, read, i, eye, ds, shadow);
+      direct_light_pixel(sv, lights, read, i, eye, ds, shadow);
       out[i] = sum;
       counts[i] = traced;
     });

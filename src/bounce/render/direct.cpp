@@ -43,7 +43,6 @@ struct ShadowBatch {
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
   const ConstGBufferView view = g.view();
-  const bool resampled = resamples_lights(lights, settings);
   vec3* pixels = out.pixels().data();
   tbb::enumerable_thread_specific<ShadowBatch> batches;
   parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
@@ -58,10 +57,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
           b.pixel.push_back(i);
           if (b.rays.size() == ShadowBatch::kCapacity) b.flush(tracer, pixels);
         };
-        if (resampled)
-          direct_pixel_resampled(scene, lights, view, i, eye, settings, shadow);
-        else
-          direct_pixel(scene, view, i, eye, settings, shadow);
+        direct_light_pixel(scene, lights, view, i, eye, settings, shadow);
       }
     b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
   });

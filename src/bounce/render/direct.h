@@ -1,8 +1,8 @@
 // The direct-light stage: light from every light source at each G-buffer pixel, with shadow
 // rays; area lights (emissive triangles, spheres) take stratified QMC samples. Scenes with more
-// lights than DirectSettings::max_looped_lights take resampled light samples instead. The
-// per-pixel bodies are direct_pixel and direct_pixel_resampled (direct_kernel.h); this launcher
-// traces their shadow rays in batches.
+// lights than DirectSettings::max_looped_lights take resampled light samples instead, and with
+// DirectSettings::one_shadow_ray a pixel traces one ray for all its samples. The per-pixel body is
+// direct_light_pixel (direct_kernel.h); this launcher traces its shadow rays in batches.
 #pragma once
 
 #include <cstdint>

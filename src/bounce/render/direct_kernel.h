@@ -31,6 +31,9 @@ struct DirectSettings {
   // resampled light samples per pixel instead of samples of every light (direct_pixel_resampled).
   uint32_t max_looped_lights = 8;
   int candidates = 8;  // resampling: candidates drawn by power per light sample
+  // One shadow ray per pixel, for one of its light samples chosen by unshadowed contribution
+  // (ShadowSelection), instead of one ray per light sample.
+  bool one_shadow_ray = false;
 };
 
 // Whether a scene with `lights` (LightPicker's entries) takes direct_pixel_resampled rather than
@@ -199,6 +202,64 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
   if (scene.environment >= 0)
     direct_environment(scene, scene.lights[scene.environment], uint32_t(scene.environment) + 1, s,
                        wo, p, i, settings, shadow);
+}
+
+// One shadow ray for all of a pixel's light samples, by resampling over the samples themselves
+// (Talbot et al. 2005): every sample's unshadowed radiance is known before its ray is traced, so
+// the pixel keeps one sample with probability proportional to that radiance's luminance and
+// scales it by (sum of the luminances) / (its own). Unbiased; exact wherever all the samples'
+// rays agree (all lit or all shadowed), noisy only where the lights' visibility differs; with a
+// single sample it is that sample unchanged. A level lit by the sun, its lamps and a flashlight
+// thus pays one ray per pixel, not one per light.
+struct ShadowSelection {
+  Ray ray;
+  vec3 radiance{0.0f};
+  float kept = 0.0f;   // the kept sample's luminance
+  float total = 0.0f;  // the sum over all samples offered
+  Pcg32 rng;
+
+  BOUNCE_HD explicit ShadowSelection(uint32_t seed) : rng(seed, 0x2545F491u) {}
+  // Offers one sample (what direct_pixel hands its `shadow`).
+  BOUNCE_HD void operator()(const Ray& r, vec3 sample_radiance) {
+    const float w = luminance(sample_radiance);
+    if (!(w > 0.0f)) return;
+    total += w;
+    // The first sample is always kept (u * total < w for u < 1); each later one replaces it with
+    // probability w / total: streaming reservoir sampling.
+    if (rng.next_float() * total < w) {
+      ray = r;
+      radiance = sample_radiance;
+      kept = w;
+    }
+  }
+  // Hands the kept sample, weighted, to shadow(ray, radiance); nothing when no sample came.
+  template <typename Shadow>
+  BOUNCE_HD void finish(Shadow& shadow) const {
+    if (kept > 0.0f) shadow(ray, kept == total ? radiance : radiance * (total / kept));
+  }
+};
+
+// Direct light at pixel i, as the pipeline takes it: the loop over every light, or resampled
+// light samples in scenes with many lights (resamples_lights), each sample handed to
+// shadow(ray, radiance); with settings.one_shadow_ray, one sample for them all
+// (ShadowSelection). The one entry the CPU and GPU launchers call.
+template <typename Shadow>
+BOUNCE_HD void direct_light_pixel(const SceneView& scene, const LightPickerView& picker,
+                                  const ConstGBufferView& g, uint32_t i, vec3 eye,
+                                  const DirectSettings& settings, Shadow&& shadow) {
+  auto samples = [&](auto&& to) {
+    if (resamples_lights(picker, settings))
+      direct_pixel_resampled(scene, picker, g, i, eye, settings, to);
+    else
+      direct_pixel(scene, g, i, eye, settings, to);
+  };
+  if (!settings.one_shadow_ray) {
+    samples(shadow);
+    return;
+  }
+  ShadowSelection selection(hash_u32(i ^ hash_u32(settings.frame * 0x9E3779B9u + settings.seed)));
+  samples(selection);
+  selection.finish(shadow);
 }
 
 }  // namespace bounce

@@ -38,6 +38,7 @@ std::vector<std::string> Renderer::parameter_state(const FrameSettings& settings
   std::vector<std::string> state;
   for (const Param& p : technique_->params().all()) state.push_back(p.to_string());
   state.push_back(std::to_string(settings.light_samples));
+  state.push_back(settings.one_shadow_ray ? "one shadow ray" : "a ray per sample");
   state.push_back(std::to_string(settings.seed));
   state.push_back(settings.accumulate ? "accumulate" : "per-frame");
   state.push_back(settings.denoise ? "denoise" : "raw");
@@ -171,7 +172,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   {
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
-    const DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
+    DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
+    direct.one_shadow_ray = settings.one_shadow_ray;
     f.shadow_rays = compute_direct(scene_data_.view(), lights_.view(), tracer_, f.gbuffer,
                                    rays.origin, direct, f.direct);
     if (average) direct_average_.add(f.direct, settings.accumulate, rest);

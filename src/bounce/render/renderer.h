@@ -41,6 +41,9 @@ struct FrameSettings {
   bool denoise = false;
   DenoiseView view = DenoiseView::kDenoised;  // what `color` shows (debug views keep history)
   uint32_t seed = 0;                          // decorrelates sample patterns between runs
+  // One shadow ray per pixel for all its light samples, chosen by their unshadowed contribution
+  // (direct_light_pixel): the real-time setting for scenes with several lights.
+  bool one_shadow_ray = false;
 
   bool operator==(const FrameSettings&) const = default;
 };
