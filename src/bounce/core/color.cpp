@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "bounce/core/error.h"
+
 namespace bounce {
 
 Srgb8Encoder::Srgb8Encoder() {
@@ -17,6 +19,10 @@ Srgb8Encoder::Srgb8Encoder() {
   }
   boundaries_[255] = std::numeric_limits<float>::infinity();
   for (int b = 0; b <= kBins; ++b) bin_code_[b] = srgb8_from_linear(float(b) / kBins, 1.0f);
+  // encode() steps over at most one boundary past its bin's start.
+  for (int b = 0; b < kBins; ++b)
+    if (bin_code_[b] < 255 && boundaries_[bin_code_[b] + 1] < float(b + 1) / kBins)
+      fail("sRGB encoder: bin {} holds two code boundaries", b);
 }
 
 const Srgb8Encoder& srgb8_encoder() {
