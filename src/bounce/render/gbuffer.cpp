@@ -1,5 +1,6 @@
 #include "bounce/render/gbuffer.h"
 
+#include <algorithm>
 #include <array>
 
 #include "bounce/core/parallel.h"
@@ -54,6 +55,16 @@ uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const Camer
 
 void compute_motion(const SceneView& scene, const CameraRays& camera, const CameraRays& previous,
                     GBuffer& g) {
+  // A still camera over meshes without a previous pose moves no pixel: zero, as motion_pixel
+  // would give (primary rays hit only in front of the camera), without its pass over the
+  // G-buffer's positions and ids.
+  bool moved = !(camera == previous);
+  for (uint32_t m = 0; m < scene.mesh_count && !moved; ++m)
+    moved = scene.meshes[m].previous_positions != nullptr;
+  if (!moved) {
+    std::fill(g.motion.begin(), g.motion.end(), vec2(0.0f));
+    return;
+  }
   const GBufferView view = g.view();
   const ConstGBufferView read = view;
   parallel_for(
