@@ -144,12 +144,15 @@ BOUNCE_HD inline LightSample area_light_sample(const AreaLightPoint& q, vec3 rad
   const vec3 to_light = q.position - p;
   const float d2 = glm::dot(to_light, to_light);
   if (d2 <= 0.0f) return s;
-  s.distance = glm::sqrt(d2);
-  s.wi = to_light / s.distance;
+  // One reciprocal square root and two divisions (this runs for every pixel's light sample).
+  const float inv_distance = 1.0f / glm::sqrt(d2);
+  s.distance = d2 * inv_distance;
+  s.wi = to_light * inv_distance;
   const float cos_light = -glm::dot(q.normal, s.wi);
   if (cos_light <= 0.0f) return s;  // behind the emitting face
-  s.pdf = d2 / (cos_light * area);
-  s.weight = radiance / s.pdf;
+  const float projected = cos_light * area;
+  s.pdf = d2 / projected;
+  s.weight = radiance * (projected / d2);  // radiance / pdf
   return s;
 }
 BOUNCE_HD inline LightSample sample_area_light(const SceneView& scene, const AreaLightView& light,
