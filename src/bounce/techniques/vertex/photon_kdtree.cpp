@@ -3,7 +3,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
-#include <numeric>
 
 #include "bounce/core/parallel.h"
 
@@ -15,8 +14,7 @@ namespace {
 constexpr uint32_t kParallelRange = 8192;
 
 struct Builder {
-  const vec3* position;
-  uint32_t* order;
+  KdBuildItem* items;
   uint8_t* axis;
   uint32_t leaf_size;
 
@@ -27,10 +25,11 @@ struct Builder {
     const vec3 extent = hi - lo;
     const int a = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const uint32_t mid = kd_middle(from, to);
-    std::nth_element(order + from, order + mid, order + to,
-                     [&](uint32_t p, uint32_t q) { return position[p][a] < position[q][a]; });
+    std::nth_element(
+        items + from, items + mid, items + to,
+        [a](const KdBuildItem& p, const KdBuildItem& q) { return p.position[a] < q.position[a]; });
     axis[mid] = uint8_t(a);
-    const float split = position[order[mid]][a];
+    const float split = items[mid].position[a];
     vec3 left_hi = hi, right_lo = lo;
     left_hi[a] = split;
     right_lo[a] = split;
@@ -49,8 +48,13 @@ struct Builder {
 void PhotonKdTree::build(const MapPhotons& photons, uint32_t leaf_size) {
   leaf_size_ = std::max(leaf_size, 1u);
   const uint32_t n = uint32_t(photons.size());
-  order_.resize(n);
-  std::iota(order_.begin(), order_.end(), 0u);
+  items_.resize(n);
+  parallel_for(
+      n,
+      [&](size_t i) {
+        items_[i] = {photons.position[i], uint32_t(i)};
+      },
+      4096);
   axis_.assign(n, 0);
   vec3 lo(0.0f), hi(0.0f);
   if (n > 0) {
@@ -60,15 +64,15 @@ void PhotonKdTree::build(const MapPhotons& photons, uint32_t leaf_size) {
       hi = glm::max(hi, p);
     }
   }
-  Builder{photons.position.data(), order_.data(), axis_.data(), leaf_size_}.build(0, n, lo, hi);
+  Builder{items_.data(), axis_.data(), leaf_size_}.build(0, n, lo, hi);
   photons_.position.resize(n);
   photons_.flux.resize(n);
   photons_.normal.resize(n);
   parallel_for(
       n,
       [&](size_t i) {
-        const uint32_t k = order_[i];
-        photons_.position[i] = photons.position[k];
+        const uint32_t k = items_[i].index;
+        photons_.position[i] = items_[i].position;
         photons_.flux[i] = photons.flux[k];
         photons_.normal[i] = photons.normal[k];
       },

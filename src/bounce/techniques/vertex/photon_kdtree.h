@@ -53,6 +53,14 @@ BOUNCE_HD inline uint32_t kd_middle(uint32_t from, uint32_t to) {
   return from + (to - from) / 2;
 }
 
+// A photon's position beside its index, as the build sorts them: the median search compares and
+// moves these, reading contiguous memory, instead of indices that send every comparison to a
+// photon's position elsewhere.
+struct KdBuildItem {
+  vec3 position;
+  uint32_t index;
+};
+
 class PhotonKdTree {
  public:
   // Builds over `photons` (copied into tree order); leaf_size >= 1.
@@ -68,7 +76,7 @@ class PhotonKdTree {
  private:
   MapPhotons photons_;
   std::vector<uint8_t> axis_;
-  std::vector<uint32_t> order_;
+  std::vector<KdBuildItem> items_;
   uint32_t leaf_size_ = 1;
 };
 
