@@ -95,6 +95,21 @@ double rms_error(const Image& a, const Image& b) {
   return std::sqrt(sum / double(a.pixel_count()));
 }
 
+// The means of `mean` and `exact` over blocks of block x block pixels agree within `tolerance`
+// (relative), channel by channel.
+void expect_blocks_near(const Image& mean, const Image& exact, int block, float tolerance) {
+  for (int by = 0; by < kSize; by += block)
+    for (int bx = 0; bx < kSize; bx += block) {
+      vec3 e(0.0f), m(0.0f);
+      for (int y = by; y < by + block; ++y)
+        for (int x = bx; x < bx + block; ++x) {
+          e += exact.at(x, y);
+          m += mean.at(x, y);
+        }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], tolerance * e[c]) << bx << "," << by;
+    }
+}
+
 TEST(ManyLights, OneShadowRayPerLightSample) {
   const LitFloor floor_;
   uint64_t looped_rays = 0, resampled_rays = 0;
@@ -113,16 +128,7 @@ TEST(ManyLights, ResamplingConvergesToTheLoopOverEveryLight) {
   mean *= 1.0f / float(kFrames);
   // Blocks of 8x8 pixels: their means agree within 3% (one realisation of 512 frames; another
   // compiler's rounding gives another, 2.2% off in one block).
-  for (int by = 0; by < kSize; by += 8)
-    for (int bx = 0; bx < kSize; bx += 8) {
-      vec3 e(0.0f), m(0.0f);
-      for (int y = by; y < by + 8; ++y)
-        for (int x = bx; x < bx + 8; ++x) {
-          e += exact.at(x, y);
-          m += mean.at(x, y);
-        }
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], 0.03f * e[c]) << bx << "," << by;
-    }
+  expect_blocks_near(mean, exact, 8, 0.03f);
 }
 
 // With an environment light among many lights, resampling leaves the sky out of its candidates
@@ -139,16 +145,7 @@ TEST(ManyLights, TheSkyIsSampledApartFromTheResampledLights) {
     exact += floor_.direct(looped(f));
     mean += floor_.direct(resampled(8, f));
   }
-  for (int by = 0; by < kSize; by += 16)
-    for (int bx = 0; bx < kSize; bx += 16) {
-      vec3 e(0.0f), m(0.0f);
-      for (int y = by; y < by + 16; ++y)
-        for (int x = bx; x < bx + 16; ++x) {
-          e += exact.at(x, y);
-          m += mean.at(x, y);
-        }
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], 0.02f * e[c]) << bx << "," << by;
-    }
+  expect_blocks_near(mean, exact, 16, 0.02f);
 }
 
 TEST(ManyLights, CandidatesWeighedByContributionBeatPickingByPower) {
@@ -198,8 +195,7 @@ TEST(ShadowSelection, ASingleSampleIsTracedUnchanged) {
   }
 }
 
-// Frames of one ray per pixel average to the image of a ray per light, shadows included, both
-// with the loop over every light and with resampled light samples.
+// Frames of one ray per pixel average to the image of a ray per light, shadows included.
 TEST(ShadowSelection, ConvergesToARayPerSample) {
   const LitFloor floor_(many_lights_over_a_board());
   const Image exact = floor_.direct(looped());
@@ -207,16 +203,7 @@ TEST(ShadowSelection, ConvergesToARayPerSample) {
   Image mean(kSize, kSize, vec3(0.0f));
   for (uint32_t f = 0; f < kFrames; ++f) mean += floor_.direct(one_ray(looped(f)));
   mean *= 1.0f / float(kFrames);
-  for (int by = 0; by < kSize; by += 8)
-    for (int bx = 0; bx < kSize; bx += 8) {
-      vec3 e(0.0f), m(0.0f);
-      for (int y = by; y < by + 8; ++y)
-        for (int x = bx; x < bx + 8; ++x) {
-          e += exact.at(x, y);
-          m += mean.at(x, y);
-        }
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], e[c], 0.03f * e[c]) << bx << "," << by;
-    }
+  expect_blocks_near(mean, exact, 8, 0.03f);
   // The board shades part of the floor (pixels darker than on the bare floor): the blocks above
   // hold pixels whose samples disagree about visibility.
   const LitFloor bare;
