@@ -90,6 +90,7 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
       {"width", r.settings.width},
       {"height", r.settings.height},
       {"light_samples", r.settings.light_samples},
+      {"shadow_rays", r.settings.one_shadow_ray ? "one" : "all"},
       {"seed", r.settings.seed},
       {"accumulate", r.settings.accumulate},
       {"frames", r.frames},

@@ -162,6 +162,7 @@ void run_sequence(const SequenceOptions& o) {
                       {"width", settings.width},
                       {"height", settings.height},
                       {"light_samples", settings.light_samples},
+                      {"shadow_rays", settings.one_shadow_ray ? "one" : "all"},
                       {"from", range.from},
                       {"to", range.to},
                       {"fps", range.fps},

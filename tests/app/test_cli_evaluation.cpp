@@ -184,6 +184,7 @@ TEST(CliEvaluation, BenchWritesJson) {
   EXPECT_EQ(j["width"], 16);
   EXPECT_EQ(j["height"], 16);
   EXPECT_EQ(j["light_samples"], 1);  // bench's real-time default
+  EXPECT_EQ(j["shadow_rays"], "one");  // --shadow-rays auto with one light sample
   EXPECT_FALSE(j["bounce_version"].get<std::string>().empty());
   EXPECT_FALSE(j["build"]["compiler"].get<std::string>().empty());
   EXPECT_TRUE(j["build"]["git_revision_at_configure"].is_string());
@@ -227,6 +228,7 @@ TEST(CliEvaluation, BenchJsonCountsThePhotonsAskedFor) {
   EXPECT_EQ(j["technique"], "tiled");
   EXPECT_EQ(j["params"]["photons"], "500");
   EXPECT_EQ(j["light_samples"], 2);
+  EXPECT_EQ(j["shadow_rays"], "all");  // auto with two light samples
   EXPECT_EQ(j["frames"], 2);
   EXPECT_EQ(stage_table(j).count("indirect"), 1u);
   expect_consistent_timings(j);
