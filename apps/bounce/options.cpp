@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iterator>
 
 #include "bounce/core/error.h"
 #include "bounce/gpu/cuda_pipeline.h"
@@ -134,7 +135,8 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
                   "Shadow rays per pixel: all (one per light sample), one (for all its light "
                   "samples, chosen by their unshadowed light: noise only where the lights' "
                   "shadows differ), or auto (one when --light-samples is 1)")
-      ->check(CLI::IsMember({"auto", "all", "one"}))
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kShadowRayChoices), std::end(kShadowRayChoices))))
       ->capture_default_str();
   command.add_option("--exposure", o.exposure_ev, "Exposure in stops for PNG output")
       ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))

@@ -13,6 +13,9 @@
 
 namespace bounce::app {
 
+// The values of --shadow-rays (FrameOptions::shadow_rays), for the CLI and the viewer's panel.
+inline constexpr const char* kShadowRayChoices[] = {"auto", "all", "one"};
+
 struct FrameOptions {
   std::string scene = "cornell";
   std::string technique = "tiled";

@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "bounce/core/error.h"
@@ -186,12 +187,12 @@ void draw_panel(ViewSession& session, PanelState& state) {
     denoiser_section(session);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("exposure", &session.exposure(), -8.0f, 8.0f, "%.1f EV");
-    static constexpr const char* kShadowRays[] = {"auto", "all", "one"};
+    constexpr int kChoices = int(std::size(kShadowRayChoices));
     int shadow_rays = 0;
-    for (int k = 0; k < 3; ++k)
-      if (session.shadow_rays() == kShadowRays[k]) shadow_rays = k;
-    if (ImGui::Combo("shadow rays", &shadow_rays, kShadowRays, 3))
-      session.shadow_rays() = kShadowRays[shadow_rays];
+    for (int k = 0; k < kChoices; ++k)
+      if (session.shadow_rays() == kShadowRayChoices[k]) shadow_rays = k;
+    if (ImGui::Combo("shadow rays", &shadow_rays, kShadowRayChoices, kChoices))
+      session.shadow_rays() = kShadowRayChoices[shadow_rays];
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "all: one per light sample; one: one per pixel, for the light sample chosen by its "

@@ -148,8 +148,7 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   {
     const ConstGBufferView read = g;
     const LightPickerView lights = scene_.lights();
-    DirectSettings ds{settings.light_samples, in.frame_index, settings.seed};
-    ds.one_shadow_ray = settings.one_shadow_ray;
+    const DirectSettings ds = direct_settings(settings, in.frame_index);
     vec3* out = direct_.data();
     uint32_t* counts = shadow_rays_.data();
     const vec3 eye = rays.origin;

@@ -172,8 +172,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   {
     ScopedStage stage(f.times, "direct");
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
-    DirectSettings direct{settings.light_samples, frame_index_, settings.seed};
-    direct.one_shadow_ray = settings.one_shadow_ray;
+    const DirectSettings direct = direct_settings(settings, frame_index_);
     f.shadow_rays = compute_direct(scene_data_.view(), lights_.view(), tracer_, f.gbuffer,
                                    rays.origin, direct, f.direct);
     if (average) direct_average_.add(f.direct, settings.accumulate, rest);

@@ -14,6 +14,7 @@
 #include "bounce/core/timer.h"
 #include "bounce/render/denoiser.h"
 #include "bounce/render/device_pipeline.h"
+#include "bounce/render/direct_kernel.h"
 #include "bounce/render/gbuffer.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/technique.h"
@@ -47,6 +48,14 @@ struct FrameSettings {
 
   bool operator==(const FrameSettings&) const = default;
 };
+
+// The direct stage's settings for frame `frame` of a run with these frame settings (both
+// backends take them from here).
+inline DirectSettings direct_settings(const FrameSettings& settings, uint32_t frame) {
+  DirectSettings d{settings.light_samples, frame, settings.seed};
+  d.one_shadow_ray = settings.one_shadow_ray;
+  return d;
+}
 
 struct Frame {
   GBuffer gbuffer;
