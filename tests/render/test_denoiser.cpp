@@ -174,6 +174,76 @@ TEST(Denoiser, HalfResolutionIndirectLightReachesFurther) {
   EXPECT_LT(deviation[0], 0.25f * deviation_x(light, 8, 56, 8, 56));
 }
 
+// While the history is short, direct light is filtered at half resolution with one pass fewer:
+// it keeps its mean and loses more of its noise than the full-resolution passes take away.
+TEST(Denoiser, HalfResolutionDirectLightReachesFurther) {
+  const GBuffer g = plane(64, 64);
+  Pcg32 rng(9);
+  const Image light = noisy(64, 64, rng, 0.5f, [](int, int) { return 2.0f; });
+  float deviation[2];
+  for (int half : {0, 1}) {
+    Denoiser d;
+    d.settings().half_direct_frames = half;
+    const Image out = run(d, g, HistoryState::kReset, light).direct;
+    EXPECT_NEAR(mean_x(out, 0, 64, 0, 64), mean_x(light, 0, 64, 0, 64),
+                0.01f * mean_x(light, 0, 64, 0, 64));
+    deviation[half] = deviation_x(out, 8, 56, 8, 56);
+  }
+  EXPECT_LT(deviation[1], 0.8f * deviation[0]);
+}
+
+// Direct light goes back to full resolution after half_direct_frames frames since the last
+// reset: those frames differ from a denoiser that never halves it, every later frame is the same
+// bit for bit (the history holds the unfiltered light), and a reset starts the count again.
+TEST(Denoiser, HalfResolutionDirectLightOnlyWhileTheHistoryIsShort) {
+  const int n = 24, half_frames = 3;
+  const GBuffer g = plane(n, n);
+  Pcg32 rng(43);
+  Denoiser halved, full;
+  halved.settings().half_direct_frames = half_frames;
+  full.settings().half_direct_frames = 0;
+  for (int k = 0; k < 2 * half_frames + 2; ++k) {
+    const Image light = noisy(n, n, rng, 0.5f, [](int, int) { return 1.0f; });
+    // A reset at frame 0 and again at frame half_frames + 1.
+    const bool reset = k == 0 || k == half_frames + 1;
+    const HistoryState state = reset ? HistoryState::kReset : HistoryState::kCameraMoved;
+    const Image a = run(halved, g, state, light).direct;
+    const Image b = run(full, g, state, light).direct;
+    const int since_reset = k <= half_frames ? k : k - half_frames - 1;
+    if (since_reset < half_frames)
+      EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
+    else
+      EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+  }
+}
+
+// Direct and indirect light at half resolution share the downsample, the passes they both take
+// and the upsample: each comes out as it does when filtered there alone.
+TEST(Denoiser, BothLightsAtHalfResolutionMatchEachAlone) {
+  GBuffer g = plane(40, 32);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 23; x < g.width; ++x) g.depth[g.view().index(x, y)] = 2.0f;
+  Pcg32 rng(17);
+  const Image direct = noisy(40, 32, rng, 0.5f, [](int x, int) { return x < 23 ? 1.0f : 3.0f; });
+  const Image indirect = noisy(40, 32, rng, 0.5f, [](int, int y) { return y < 9 ? 0.5f : 2.0f; });
+  for (int indirect_iterations : {1, 2, 4}) {  // fewer, as many and more passes than direct's 2
+    SCOPED_TRACE(indirect_iterations);
+    Denoiser both, direct_alone, indirect_alone;
+    for (Denoiser* d : {&both, &direct_alone, &indirect_alone})
+      d->settings().indirect_iterations = indirect_iterations + 4;  // (32 pixels high: 4 fewer)
+    indirect_alone.settings().half_direct_frames = 0;
+    const Output out = run(both, g, HistoryState::kReset, direct, &indirect);
+    const Image d = run(direct_alone, g, HistoryState::kReset, direct).direct;
+    const Image i = run(indirect_alone, g, HistoryState::kReset, direct, &indirect).indirect;
+    for (size_t k = 0; k < g.size(); ++k) {
+      expect_near_rel(out.direct.pixels()[k], d.pixels()[k], 1e-5f, "direct");
+      expect_near_rel(out.indirect.pixels()[k], i.pixels()[k], 1e-5f, "indirect");
+    }
+    // (And the direct light was filtered: it is not its input.)
+    EXPECT_NE(out.direct.pixels(), direct.pixels());
+  }
+}
+
 // The indirect filter's reach follows the image: photon blotches cover a fixed part of the view.
 TEST(Denoiser, IndirectPassesFollowTheImageHeight) {
   EXPECT_EQ(indirect_iterations_for(5, 512), 5);
@@ -796,14 +866,20 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
 
 TEST(Denoiser, RecordsItsSubStages) {
   const GBuffer g = plane(4, 4);
-  Denoiser d;
-  StageTimes times;
-  Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
-  d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
-  std::set<std::string> names;
-  for (const StageTime& s : times.stages()) names.insert(s.name);
-  EXPECT_EQ(names, (std::set<std::string>{"denoise/temporal", "denoise/variance", "denoise/atrous",
-                                          "denoise/indirect", "denoise/remodulate"}));
+  for (int half_direct_frames : {0, 1}) {
+    Denoiser d;
+    d.settings().half_direct_frames = half_direct_frames;
+    StageTimes times;
+    Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
+    d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
+    std::set<std::string> names;
+    for (const StageTime& s : times.stages()) names.insert(s.name);
+    std::set<std::string> expected{"denoise/temporal", "denoise/variance", "denoise/atrous",
+                                   "denoise/remodulate"};
+    // (Both lights at half resolution are one stage, as both at full resolution are.)
+    if (half_direct_frames == 0) expected.insert("denoise/indirect");
+    EXPECT_EQ(names, expected) << half_direct_frames;
+  }
 }
 
 TEST(Denoiser, RefusesImagesOfAnotherSize) {

@@ -63,24 +63,11 @@ void atrous(const denoise::AtrousPass& pass) {
   });
 }
 
-// As denoiser.cpp's run_atrous: `iterations` passes, outputs(k, pass) points pass k's outputs.
-template <typename Outputs>
-denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iterations,
-                               const Outputs& outputs) {
-  for (int k = 0; k < iterations; ++k) {
-    outputs(k, pass);
-    pass.step = 1 << k;
-    const bool variance = k + 1 < iterations;  // the last pass's would guide nothing
-    if (both)
-      variance ? atrous<true, true>(pass) : atrous<true, false>(pass);
-    else
-      variance ? atrous<false, true>(pass) : atrous<false, false>(pass);
-    pass.direct.in = pass.direct.out;
-    pass.direct.in_var = pass.direct.out_var;
-    pass.indirect.in = pass.indirect.out;
-    pass.indirect.in_var = pass.indirect.out_var;
-  }
-  return pass;
+void atrous(const denoise::AtrousPass& pass, bool both, bool variance) {
+  if (both)
+    variance ? atrous<true, true>(pass) : atrous<true, false>(pass);
+  else
+    variance ? atrous<false, true>(pass) : atrous<false, false>(pass);
 }
 
 void downsample(const denoise::HalfDownsample& pass, int half_height) {
@@ -93,6 +80,20 @@ void upsample(const denoise::HalfUpsample& pass) {
   const denoise::HalfUpsample p = pass;
   launch_2d(p.width, p.height, [=] __device__(int x, int y) { denoise::upsample_pixel(p, x, y); });
 }
+
+// The device's passes for the schedules both backends share (denoise_plan.h).
+struct DevicePasses {
+  void atrous(const denoise::AtrousPass& pass, bool both, bool variance) const {
+    device_denoise::atrous(pass, both, variance);
+  }
+  void depth_slope(const float* depth, int w, int h, float* slope) const {
+    device_denoise::depth_slope(depth, w, h, slope);
+  }
+  void downsample(const denoise::HalfDownsample& pass, int half_height) const {
+    device_denoise::downsample(pass, half_height);
+  }
+  void upsample(const denoise::HalfUpsample& pass) const { device_denoise::upsample(pass); }
+};
 
 template <bool kIndirect, bool kRest>
 void remodulate(const denoise::RemodulatePass& pass, size_t n) {
@@ -144,9 +145,9 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   prev_history_.fill_zero();
   prev_length_.resize(n);
   prev_length_.fill_zero();
-  for (Rgb* p :
-       {&rest_factor_, &rest_emission_, &light_direct_, &light_indirect_, &upsampled_,
-        &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
+  for (Rgb* p : {&rest_factor_, &rest_emission_, &light_direct_, &light_indirect_, &upsampled_[0],
+                 &upsampled_[1], &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0],
+                 &filter_indirect_[1]})
     p->resize(n);
   for (auto* b : {&box_[0], &box_[1], &box_[2], &box_[3], &box_[4], &depth_slope_, &var_direct_,
                   &var_indirect_, &filter_var_direct_[0], &filter_var_direct_[1],
@@ -161,11 +162,12 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   const size_t half_n = size_t(half_width_) * size_t(half_height_);
   half_surface_.resize(half_n);
   half_slope_.resize(half_n);
-  for (int k = 0; k < 3; ++k) {
-    half_light_[k].resize(half_n);
-    half_var_[k].resize(half_n);
-    half_var_[k].fill_zero();
-  }
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < denoise::kHalfMaxLights; ++l) {
+      half_light_[k][l].resize(half_n);
+      half_var_[k][l].resize(half_n);
+      half_var_[k][l].fill_zero();
+    }
   valid_ = valid_ && keep_last;
 }
 
@@ -248,6 +250,8 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   }
   rest_valid_ = rest || state == HistoryState::kReset;
   rest_frames_ = rest && !resized ? std::min(rest_frames_, (1 << 30) - 1) + 1 : 0;
+  history_frames_ =
+      state == HistoryState::kReset ? 0 : std::min(history_frames_, (1 << 30) - 1) + 1;
 
   ConstRgbPlanes light_d = light_direct_.view();
   ConstRgbPlanes light_i = light_indirect_.view();
@@ -274,74 +278,52 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   const denoise::AtrousPass base =
       denoise::atrous_base(s, ConstSurfacePlanes(surface_.view()), depth_slope_.data(), light_d,
                            var_direct_.data(), light_i, var_indirect_.data(), w, h);
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_);
-  const int indirect_iterations = plan.indirect_iterations;
-  const bool half = plan.half, both = plan.both;
-  if (spatial) {
+  const denoise::AtrousPlan plan =
+      denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_, history_frames_);
+  const device_denoise::DevicePasses passes;
+  auto atrous = [&](const denoise::AtrousPass& pass, bool both, bool variance) {
+    passes.atrous(pass, both, variance);
+  };
+  const bool both = plan.both;
+  if (spatial && !plan.direct_half) {
     auto outputs = [this](int k, denoise::AtrousPass& pass) {
       pass.direct.out = filter_direct_[k & 1].view();
       pass.direct.out_var = filter_var_direct_[k & 1].data();
       pass.indirect.out = filter_indirect_[k & 1].view();
       pass.indirect.out_var = filter_var_indirect_[k & 1].data();
     };
+    const int iterations = plan.direct_iterations;
     const denoise::AtrousPass result =
-        device_denoise::run_atrous(base, both, plan.direct_iterations, outputs);
+        denoise::run_atrous(atrous, base, both, 0, iterations, iterations, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
-  if (indirect_iterations > 0 && !both) {
+  if (plan.direct_half || plan.half) {
+    denoise::HalfPlanes half;
+    half.surface = half_surface_.view();
+    half.depth_slope = half_slope_.data();
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < denoise::kHalfMaxLights; ++l) {
+        half.light[k][l] = half_light_[k][l].view();
+        half.variance[k][l] = half_var_[k][l].data();
+      }
+    for (int l = 0; l < denoise::kHalfMaxLights; ++l) half.upsampled[l] = upsampled_[l].view();
+    half.width = half_width_;
+    half.height = half_height_;
+    denoise::filter_half(passes, base, plan, half, light_d, light_i);
+  }
+  if (plan.indirect_iterations > 0 && !both && !plan.half) {
     denoise::AtrousPass indirect_base = base;
     indirect_base.direct = base.indirect;
     indirect_base.sigma_luminance = s.sigma_luminance_indirect;
-    if (half) {
-      const int hw = half_width_, hh = half_height_;
-      denoise::HalfDownsample down;
-      down.surface = indirect_base.surface;
-      down.light = light_i;
-      down.variance = indirect_base.direct.in_var;
-      down.width = w;
-      down.height = h;
-      down.half_surface = half_surface_.view();
-      down.half_light = half_light_[0].view();
-      down.half_variance = half_var_[0].data();
-      down.half_width = hw;
-      device_denoise::downsample(down, hh);
-      device_denoise::depth_slope(half_surface_.depth.data(), hw, hh, half_slope_.data());
-      denoise::AtrousPass pass = indirect_base;
-      pass.surface = ConstSurfacePlanes(half_surface_.view());
-      pass.depth_slope = half_slope_.data();
-      pass.direct = {half_light_[0].view(), half_var_[0].data(), {}, nullptr};
-      pass.width = hw;
-      pass.height = hh;
-      auto outputs = [this](int k, denoise::AtrousPass& p) {
-        p.direct.out = half_light_[1 + (k & 1)].view();
-        p.direct.out_var = half_var_[1 + (k & 1)].data();
-      };
-      const denoise::AtrousPass result =
-          device_denoise::run_atrous(pass, false, indirect_iterations, outputs);
-      denoise::HalfUpsample up;
-      up.surface = indirect_base.surface;
-      up.depth_slope = indirect_base.depth_slope;
-      up.light = light_i;
-      up.half_surface = ConstSurfacePlanes(half_surface_.view());
-      up.half_light = result.direct.in;
-      up.width = w;
-      up.height = h;
-      up.half_width = hw;
-      up.half_height = hh;
-      up.sigma_depth = indirect_base.sigma_depth;
-      up.out = upsampled_.view();
-      device_denoise::upsample(up);
-      light_i = upsampled_.view();
-    } else {
-      // The direct result sits in the ping-pong's direct planes; these are the indirect ones.
-      auto outputs = [this](int k, denoise::AtrousPass& p) {
-        p.direct.out = filter_indirect_[k & 1].view();
-        p.direct.out_var = filter_var_indirect_[k & 1].data();
-      };
-      light_i =
-          device_denoise::run_atrous(indirect_base, false, indirect_iterations, outputs).direct.in;
-    }
+    // The direct result sits in the ping-pong's direct planes; these are the indirect ones.
+    auto outputs = [this](int k, denoise::AtrousPass& p) {
+      p.direct.out = filter_indirect_[k & 1].view();
+      p.direct.out_var = filter_var_indirect_[k & 1].data();
+    };
+    const int iterations = plan.indirect_iterations;
+    light_i = denoise::run_atrous(atrous, indirect_base, false, 0, iterations, iterations, outputs)
+                  .direct.in;
   }
   const denoise::RemodulatePass remodulate{
       g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},

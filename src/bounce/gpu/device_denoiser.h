@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "bounce/gpu/device_buffer.h"
+#include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_kernels.h"
 #include "bounce/render/denoiser.h"
 #include "bounce/render/gbuffer_view.h"
@@ -43,6 +44,7 @@ class DeviceDenoiser {
   int width_ = 0, height_ = 0;
   bool valid_ = false, had_indirect_ = false, rest_valid_ = false;
   int rest_frames_ = 0;  // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
+  int history_frames_ = 0;  // frames since the last reset (Buffers::history_frames)
   Surface surface_, prev_surface_, half_surface_;
   DeviceBuffer<denoise::HistoryTexel> history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;
@@ -56,9 +58,10 @@ class DeviceDenoiser {
   DeviceBuffer<float> filter_var_direct_[2], filter_var_indirect_[2];
   int half_width_ = 0, half_height_ = 0;
   DeviceBuffer<float> half_slope_;
-  Rgb half_light_[3];
-  DeviceBuffer<float> half_var_[3];
-  Rgb upsampled_;
+  // Per light slot (denoise::HalfPlanes): the downsampled input, the ping-pong, the result.
+  Rgb half_light_[3][denoise::kHalfMaxLights];
+  DeviceBuffer<float> half_var_[3][denoise::kHalfMaxLights];
+  Rgb upsampled_[denoise::kHalfMaxLights];
 };
 
 }  // namespace bounce

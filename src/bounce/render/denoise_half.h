@@ -1,13 +1,16 @@
-// Filtering indirect light at half resolution (render/denoiser.h): photon gathers leave blotches
-// as wide as the gather radius, tens of pixels at 512x512, which the full-resolution a-trous
-// filter's five passes (a footprint of about 13 pixels' standard deviation) cannot flatten. The
-// same passes over a half-resolution image reach twice as far at a quarter of the cost.
+// Filtering light at half resolution (render/denoiser.h): photon gathers leave blotches as wide
+// as the gather radius, tens of pixels at 512x512, which the full-resolution a-trous filter's five
+// passes (a footprint of about 13 pixels' standard deviation) cannot flatten. The same passes over
+// a half-resolution image reach twice as far at a quarter of the cost. Direct light takes the same
+// path while its history is short (DenoiseSettings::half_direct_frames): with one frame of one
+// light sample its noise is as wide as the full-resolution passes reach.
 //
 // downsample_pixel builds each half-resolution texel from its 2x2 block: the surface of the
 // block's nearest reflecting pixel, and the light and variance of the block's pixels that lie on
 // that surface. upsample_pixel is a joint-bilateral upsample: the four nearest texels, weighted
 // bilinearly and by depth and normal agreement with the full-resolution pixel; a pixel that no
-// texel represents (a sliver thinner than two pixels) keeps its own unfiltered light.
+// texel represents (a sliver thinner than two pixels) keeps its own unfiltered light. Both take
+// one or two lights (direct, indirect) through the same surface tests, computed once.
 #pragma once
 
 #include <cmath>
@@ -25,22 +28,26 @@ inline constexpr float kHalfDepthAgreement = 0.05f;
 // Below this total weight the upsample keeps the pixel's own light.
 inline constexpr float kHalfMinWeight = 1e-3f;
 
+// The lights a half-resolution pass carries at most (direct and indirect).
+inline constexpr int kHalfMaxLights = 2;
+
 struct HalfDownsample {
   ConstSurfacePlanes surface;  // full resolution
-  ConstRgbPlanes light;        // full resolution, demodulated
-  const float* variance = nullptr;
+  int lights = 1;              // how many entries of light, variance, half_* are used
+  ConstRgbPlanes light[kHalfMaxLights];  // full resolution, demodulated
+  const float* variance[kHalfMaxLights] = {};
   int width = 0;  // full resolution
   int height = 0;
   SurfacePlanes half_surface;  // half resolution (object ids unused)
-  RgbPlanes half_light;
-  float* half_variance = nullptr;
+  RgbPlanes half_light[kHalfMaxLights];
+  float* half_variance[kHalfMaxLights] = {};
   int half_width = 0;
 };
 
-// Half-resolution texel hx of row hy. kClampX: the block's second column may lie outside an
-// image of odd width (the last texel of a row; the row loop's other texels need no test).
-// Branch-free, so the CPU's row loop vectorises.
-template <bool kClampX>
+// Half-resolution texel hx of row hy, for the first kLights lights. kClampX: the block's second
+// column may lie outside an image of odd width (the last texel of a row; the row loop's other
+// texels need no test). Branch-free, so the CPU's row loop vectorises.
+template <bool kClampX, int kLights>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
   const int x0 = 2 * hx, y0 = 2 * hy;
   const int x1 = kClampX && x0 + 1 >= p.width ? x0 : x0 + 1;
@@ -60,7 +67,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     nz = nearer ? qz : nz;
   });
   const bool found = rep_depth < 1e30f;
-  float r = 0.0f, g = 0.0f, b = 0.0f, var = 0.0f, count = 0.0f;
+  float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, var[kLights] = {}, count = 0.0f;
   unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
     const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
@@ -68,10 +75,13 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     const bool same = (z > 0.0f) & (cos_q >= kHalfNormalAgreement) &
                       (std::fabs(z - rep_depth) <= kHalfDepthAgreement * rep_depth);
     const float w = same ? 1.0f : 0.0f;
-    r += w * p.light.r[q];
-    g += w * p.light.g[q];
-    b += w * p.light.b[q];
-    var += w * p.variance[q];
+    unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+      constexpr int kL = decltype(l)::value;
+      r[kL] += w * p.light[kL].r[q];
+      g[kL] += w * p.light[kL].g[q];
+      b[kL] += w * p.light[kL].b[q];
+      var[kL] += w * p.variance[kL][q];
+    });
     count += w;
   });
   // (Where a representative was found it counts itself, so count >= 1.)
@@ -81,30 +91,37 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
   p.half_surface.nx[h] = nx;
   p.half_surface.ny[h] = ny;
   p.half_surface.nz[h] = nz;
-  p.half_light.r[h] = r * inv;
-  p.half_light.g[h] = g * inv;
-  p.half_light.b[h] = b * inv;
-  // The variance of the block's mean.
-  p.half_variance[h] = var * inv * inv;
+  unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+    constexpr int kL = decltype(l)::value;
+    p.half_light[kL].r[h] = r[kL] * inv;
+    p.half_light[kL].g[h] = g[kL] * inv;
+    p.half_light[kL].b[h] = b[kL] * inv;
+    // The variance of the block's mean.
+    p.half_variance[kL][h] = var[kL] * inv * inv;
+  });
 }
 
 // The whole downsample at texel (hx, hy), for a launcher that runs one thread per texel.
 BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
-  downsample_pixel<true>(p, hx, hy);
+  if (p.lights == 2)
+    downsample_pixel<true, 2>(p, hx, hy);
+  else
+    downsample_pixel<true, 1>(p, hx, hy);
 }
 
 struct HalfUpsample {
   ConstSurfacePlanes surface;  // full resolution
   const float* depth_slope;    // full resolution
-  ConstRgbPlanes light;        // full resolution, unfiltered (the fallback)
+  int lights = 1;              // how many entries of light, half_light and out are used
+  ConstRgbPlanes light[kHalfMaxLights];  // full resolution, unfiltered (the fallback)
   ConstSurfacePlanes half_surface;
-  ConstRgbPlanes half_light;  // filtered
+  ConstRgbPlanes half_light[kHalfMaxLights];  // filtered
   int width = 0;
   int height = 0;
   int half_width = 0;
   int half_height = 0;
   float sigma_depth = 0.0f;
-  RgbPlanes out;  // full resolution
+  RgbPlanes out[kHalfMaxLights];  // full resolution
 };
 
 // The two texel rows a full-resolution row y reads, and their bilinear weights.
@@ -122,9 +139,10 @@ BOUNCE_HD inline HalfUpsampleRows half_upsample_rows(const HalfUpsample& p, int 
   return {{size_t(r0) * size_t(p.half_width), size_t(r1) * size_t(p.half_width)}, {1.0f - ty, ty}};
 }
 
-// Full-resolution pixel x of row y (rows from half_upsample_rows). kClamp: texel columns are
-// clamped to the image (the first and last columns; a row's interior needs no test).
-template <bool kClamp>
+// Full-resolution pixel x of row y (rows from half_upsample_rows), for the first kLights lights.
+// kClamp: texel columns are clamped to the image (the first and last columns; a row's interior
+// needs no test).
+template <bool kClamp, int kLights>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
                                                     const HalfUpsampleRows& rows, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
@@ -140,7 +158,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
   // between two depth edges has a steep slope by its neighbours, not by its own surface.
   const float slope = glm::min(p.depth_slope[i], kHalfDepthAgreement * z);
   const float max_dz = (2.0f * p.sigma_depth * slope) + kHalfDepthAgreement * z;
-  float r = 0.0f, g = 0.0f, b = 0.0f, wsum = 0.0f;
+  float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, wsum = 0.0f;
   unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     int hx = hx0 + dx;
@@ -153,21 +171,30 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
     const bool same =
         (zh > 0.0f) & (cos_nh >= kHalfNormalAgreement) & (std::fabs(zh - z) <= max_dz);
     const float w = same ? bilinear : 0.0f;
-    r += w * p.half_light.r[h];
-    g += w * p.half_light.g[h];
-    b += w * p.half_light.b[h];
+    unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+      constexpr int kL = decltype(l)::value;
+      r[kL] += w * p.half_light[kL].r[h];
+      g[kL] += w * p.half_light[kL].g[h];
+      b[kL] += w * p.half_light[kL].b[h];
+    });
     wsum += w;
   });
   const bool represented = (z > 0.0f) & (wsum > kHalfMinWeight);
   const float inv = 1.0f / (represented ? wsum : 1.0f);
-  p.out.r[i] = represented ? r * inv : p.light.r[i];
-  p.out.g[i] = represented ? g * inv : p.light.g[i];
-  p.out.b[i] = represented ? b * inv : p.light.b[i];
+  unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+    constexpr int kL = decltype(l)::value;
+    p.out[kL].r[i] = represented ? r[kL] * inv : p.light[kL].r[i];
+    p.out[kL].g[i] = represented ? g[kL] * inv : p.light[kL].g[i];
+    p.out[kL].b[i] = represented ? b[kL] * inv : p.light[kL].b[i];
+  });
 }
 
 // The whole upsample at pixel (x, y), for a launcher that runs one thread per pixel.
 BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, int x, int y) {
-  upsample_pixel<true>(p, half_upsample_rows(p, y), x, y);
+  if (p.lights == 2)
+    upsample_pixel<true, 2>(p, half_upsample_rows(p, y), x, y);
+  else
+    upsample_pixel<true, 1>(p, half_upsample_rows(p, y), x, y);
 }
 
 }  // namespace bounce::denoise

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "bounce/render/denoise_atrous.h"
+#include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoiser.h"
 
@@ -44,24 +45,168 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
 }
 
 struct AtrousPlan {
-  int direct_iterations = 0;    // passes over direct light
+  int direct_iterations = 0;    // passes over direct light, at its resolution
   int indirect_iterations = 0;  // passes over indirect light (0: none)
+  bool direct_half = false;     // direct light filtered at half resolution
   bool half = false;            // indirect light filtered at half resolution
   // At full resolution with as many passes, both lights share each pass's geometry.
   bool both = false;
 };
 
-// `rest_frames`: consecutive frames at rest up to this one (0 when not at rest).
+// `rest_frames`: consecutive frames at rest up to this one (0 when not at rest);
+// `history_frames`: frames since the last reset before this one (0 at a reset).
 inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_indirect, int height,
-                              int rest_frames) {
+                              int rest_frames, int history_frames) {
   AtrousPlan p;
   p.direct_iterations =
       direct_iterations_at_rest(s.atrous_iterations, s.rest_atrous_frames, rest_frames);
+  // A short history holds noise as wide as the full-resolution passes reach: half resolution
+  // reaches twice as far, with one pass fewer (steps 1 and 2 there span what 1, 2 and 4 span at
+  // full resolution) at a quarter of the cost per pass.
+  p.direct_half = spatial && p.direct_iterations > 0 && history_frames < s.half_direct_frames;
+  if (p.direct_half) p.direct_iterations = std::max(p.direct_iterations - 1, 1);
   p.indirect_iterations =
       spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, height) : 0;
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
-  p.both = p.indirect_iterations > 0 && !p.half && p.indirect_iterations == p.direct_iterations;
+  p.both = p.indirect_iterations > 0 && !p.half && !p.direct_half &&
+           p.indirect_iterations == p.direct_iterations;
   return p;
+}
+
+// Passes first .. first + count - 1 of an a-trous filter (steps 2^k) from `pass`'s inputs: over
+// its direct slot alone, or over both slots sharing the geometric weights (`both`).
+// outputs(k, pass) points pass k's outputs at their planes; atrous(pass, both, variance) runs one
+// pass on the backend. The filter ends after pass `end - 1`, whose variance would guide nothing.
+// Returns the pass whose inputs are the results.
+template <typename Atrous, typename Outputs>
+AtrousPass run_atrous(const Atrous& atrous, AtrousPass pass, bool both, int first, int count,
+                      int end, const Outputs& outputs) {
+  for (int k = first; k < first + count; ++k) {
+    outputs(k, pass);
+    pass.step = 1 << k;
+    atrous(pass, both, k + 1 < end);
+    pass.direct.in = pass.direct.out;
+    pass.direct.in_var = pass.direct.out_var;
+    pass.indirect.in = pass.indirect.out;
+    pass.indirect.in_var = pass.indirect.out_var;
+  }
+  return pass;
+}
+
+// The planes the half-resolution filter works in, owned by the backend. Per light slot (the
+// lights filtered here, direct first): the downsampled input (0) and the a-trous ping-pong (1,
+// 2), each rgb and variance; then the upsampled result at full resolution.
+struct HalfPlanes {
+  SurfacePlanes surface;
+  float* depth_slope = nullptr;
+  RgbPlanes light[3][kHalfMaxLights];
+  float* variance[3][kHalfMaxLights] = {};
+  RgbPlanes upsampled[kHalfMaxLights];
+  int width = 0;
+  int height = 0;
+};
+
+// The lights the plan filters at half resolution (direct_half, half), from `base`'s inputs at
+// full resolution: downsampled together, filtered (sharing the geometric weights for the passes
+// both take), upsampled together. Replaces light_d and light_i by the results of those filtered
+// here. The backend runs the passes: downsample(HalfDownsample), depth_slope(depth, w, h, out),
+// atrous(pass, both, variance), upsample(HalfUpsample).
+template <typename Backend>
+void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
+                 const HalfPlanes& half, ConstRgbPlanes& light_d, ConstRgbPlanes& light_i) {
+  const int nd = plan.direct_half ? plan.direct_iterations : 0;
+  const int ni = plan.half ? plan.indirect_iterations : 0;
+  if (nd == 0 && ni == 0) return;
+  // Slot of each light filtered here (direct first), and its full-resolution input.
+  const AtrousLight* inputs[kHalfMaxLights] = {};
+  int lights = 0;
+  const int slot_d = nd > 0 ? lights++ : -1;
+  const int slot_i = ni > 0 ? lights++ : -1;
+  if (slot_d >= 0) inputs[slot_d] = &base.direct;
+  if (slot_i >= 0) inputs[slot_i] = &base.indirect;
+
+  HalfDownsample down;
+  down.surface = base.surface;
+  down.lights = lights;
+  down.width = base.width;
+  down.height = base.height;
+  down.half_surface = half.surface;
+  down.half_width = half.width;
+  for (int l = 0; l < lights; ++l) {
+    down.light[l] = inputs[l]->in;
+    down.variance[l] = inputs[l]->in_var;
+    down.half_light[l] = half.light[0][l];
+    down.half_variance[l] = half.variance[0][l];
+  }
+  backend.downsample(down, half.height);
+  backend.depth_slope(half.surface.depth, half.width, half.height, half.depth_slope);
+
+  // Slot 0 rides in the pass's direct light, slot 1 in its indirect light.
+  AtrousPass pass = base;
+  pass.surface = half.surface;
+  pass.depth_slope = half.depth_slope;
+  pass.width = half.width;
+  pass.height = half.height;
+  pass.direct = {half.light[0][0], half.variance[0][0], {}, nullptr};
+  pass.indirect = {half.light[0][1], half.variance[0][1], {}, nullptr};
+  // A lone indirect light takes the direct slot with its own luminance sigma.
+  if (slot_d < 0) pass.sigma_luminance = base.sigma_luminance_indirect;
+  auto outputs_of = [&](int slot) {
+    return [&half, slot](int k, AtrousPass& p) {
+      AtrousLight& out = slot == 0 ? p.direct : p.indirect;
+      out.out = half.light[1 + (k & 1)][slot];
+      out.out_var = half.variance[1 + (k & 1)][slot];
+    };
+  };
+  auto outputs_both = [&](int k, AtrousPass& p) {
+    outputs_of(0)(k, p);
+    outputs_of(1)(k, p);
+  };
+  auto atrous = [&](const AtrousPass& p, bool both, bool variance) {
+    backend.atrous(p, both, variance);
+  };
+  // Both lights share the passes they both take; the one with more passes goes on alone.
+  const int shared = lights == 2 ? std::min(nd, ni) : 0;
+  pass = run_atrous(atrous, pass, true, 0, shared, std::max(nd, ni), outputs_both);
+  ConstRgbPlanes filtered[kHalfMaxLights];
+  if (lights == 1) {
+    filtered[0] =
+        run_atrous(atrous, pass, false, 0, std::max(nd, ni), std::max(nd, ni), outputs_of(0))
+            .direct.in;
+  } else if (nd > shared) {
+    filtered[0] = run_atrous(atrous, pass, false, shared, nd - shared, nd, outputs_of(0)).direct.in;
+    filtered[1] = pass.indirect.in;
+  } else {
+    // Indirect light alone in the direct slot, writing the ping-pong's indirect planes.
+    AtrousPass alone = pass;
+    alone.direct = pass.indirect;
+    alone.sigma_luminance = base.sigma_luminance_indirect;
+    auto outputs = [&half](int k, AtrousPass& p) {
+      p.direct.out = half.light[1 + (k & 1)][1];
+      p.direct.out_var = half.variance[1 + (k & 1)][1];
+    };
+    filtered[0] = pass.direct.in;
+    filtered[1] = run_atrous(atrous, alone, false, shared, ni - shared, ni, outputs).direct.in;
+  }
+
+  HalfUpsample up;
+  up.surface = base.surface;
+  up.depth_slope = base.depth_slope;
+  up.lights = lights;
+  up.half_surface = half.surface;
+  up.width = base.width;
+  up.height = base.height;
+  up.half_width = half.width;
+  up.half_height = half.height;
+  up.sigma_depth = base.sigma_depth;
+  for (int l = 0; l < lights; ++l) {
+    up.light[l] = inputs[l]->in;
+    up.half_light[l] = filtered[l];
+    up.out[l] = half.upsampled[l];
+  }
+  backend.upsample(up);
+  if (slot_d >= 0) light_d = half.upsampled[slot_d];
+  if (slot_i >= 0) light_i = half.upsampled[slot_i];
 }
 
 // The first pass over direct (and indirect) light: inputs, the guide planes and the sigmas;

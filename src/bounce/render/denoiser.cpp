@@ -247,24 +247,51 @@ int direct_iterations_at_rest(int iterations, int fade_frames, int rest_frames) 
 
 namespace {
 
-// Runs `iterations` a-trous passes from `pass`'s inputs: over direct light alone, or over both
-// lights together (`both`, sharing the geometric weights). outputs(k, pass) points pass k's
-// outputs at their planes. Returns the pass whose inputs are the results.
-template <typename Outputs>
-denoise::AtrousPass run_atrous(denoise::AtrousPass pass, bool both, int iterations,
-                               const Outputs& outputs) {
-  for (int k = 0; k < iterations; ++k) {
-    outputs(k, pass);
-    pass.step = 1 << k;
-    // The last pass's variance would guide nothing.
-    atrous_pass<1>(pass, both, k + 1 < iterations);
-    pass.direct.in = pass.direct.out;
-    pass.direct.in_var = pass.direct.out_var;
-    pass.indirect.in = pass.indirect.out;
-    pass.indirect.in_var = pass.indirect.out_var;
+// The CPU's passes for the schedules both backends share (denoise_plan.h).
+struct CpuPasses {
+  void atrous(const denoise::AtrousPass& pass, bool both, bool variance) const {
+    atrous_pass<1>(pass, both, variance);
   }
-  return pass;
-}
+  void depth_slope(const float* depth, int w, int h, float* slope) const {
+    compute_depth_slope(depth, w, h, slope);
+  }
+  void downsample(const denoise::HalfDownsample& p, int half_height) const {
+    p.lights == 2 ? downsample_rows<2>(p, half_height) : downsample_rows<1>(p, half_height);
+  }
+  void upsample(const denoise::HalfUpsample& p) const {
+    p.lights == 2 ? upsample_rows<2>(p) : upsample_rows<1>(p);
+  }
+
+  template <int kLights>
+  static void downsample_rows(const denoise::HalfDownsample& down, int half_height) {
+    const int hw = down.half_width;
+    for_rows(half_height, [&](int y) {
+      const denoise::HalfDownsample p = down;
+      // Only the last texel of a row of odd width has a block column outside the image.
+      const int interior = p.width % 2 == 0 ? hw : hw - 1;
+      BOUNCE_IVDEP
+      for (int x = 0; x < interior; ++x) denoise::downsample_pixel<false, kLights>(p, x, y);
+      for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true, kLights>(p, x, y);
+    });
+  }
+  template <int kLights>
+  static void upsample_rows(const denoise::HalfUpsample& up) {
+    for_rows(up.height, [&](int y) {
+      const denoise::HalfUpsample p = up;
+      const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(p, y);
+      // Columns 0 and w - 1 may read texels outside the half image.
+      row_loop(
+          p.width, 1,
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::upsample_pixel<true, kLights>(p, rows, x, y);
+          },
+          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+            denoise::upsample_pixel<false, kLights>(p, rows, x, y);
+          });
+    });
+  }
+};
+
 }  // namespace
 
 struct Denoiser::Buffers {
@@ -285,14 +312,16 @@ struct Denoiser::Buffers {
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
   Planes<2> variance;              // the variance estimate: direct, indirect
   Planes<8> filter[2];             // a-trous ping-pong
-  // Indirect light at half resolution: surfaces, depth slope, light and variance (the
-  // downsampled input, then a ping-pong pair), and the upsampled result.
+  int history_frames = 0;          // frames since the last reset before this run's (0: it is one)
+  // Light at half resolution (denoise_half.h): surfaces, depth slope, light and variance (the
+  // downsampled input, then a ping-pong pair; the filter planes' layout), the upsampled result
+  // (direct rgb, indirect rgb: denoise::HalfPlanes' slots).
   int half_width = 0;
   int half_height = 0;
   SurfaceBuffers half_surface;
   std::vector<float> half_slope;
-  Planes<4> half_light[3];
-  Planes<3> upsampled;
+  Planes<8> half_light[3];
+  Planes<6> upsampled;
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
 
@@ -330,70 +359,21 @@ struct Denoiser::Buffers {
     valid = valid && keep_last;
   }
 
-  // Indirect light filtered at half resolution (denoise_half.h): downsample, `iterations`
-  // a-trous passes, joint-bilateral upsample into `upsampled`. `base` holds the full-resolution
-  // surfaces, and the indirect light's variance in its first slot. Returns the upsampled planes.
-  ConstRgbPlanes filter_half_indirect(const denoise::AtrousPass& base, ConstRgbPlanes light,
-                                      int iterations);
+  denoise::HalfPlanes half_planes() {
+    denoise::HalfPlanes h;
+    h.surface = half_surface.view();
+    h.depth_slope = half_slope.data();
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < denoise::kHalfMaxLights; ++l) {
+        h.light[k][l] = half_light[k].rgb(3 * l);
+        h.variance[k][l] = half_light[k][kVarDirect + l];
+      }
+    for (int l = 0; l < denoise::kHalfMaxLights; ++l) h.upsampled[l] = upsampled.rgb(3 * l);
+    h.width = half_width;
+    h.height = half_height;
+    return h;
+  }
 };
-
-ConstRgbPlanes Denoiser::Buffers::filter_half_indirect(const denoise::AtrousPass& base,
-                                                       ConstRgbPlanes light, int iterations) {
-  Buffers& b = *this;
-  const int w = b.width, h = b.height, hw = b.half_width, hh = b.half_height;
-  denoise::HalfDownsample down;
-  down.surface = base.surface;
-  down.light = light;
-  down.variance = base.direct.in_var;
-  down.width = w;
-  down.height = h;
-  down.half_surface = b.half_surface.view();
-  down.half_light = b.half_light[0].rgb(0);
-  down.half_variance = b.half_light[0][3];
-  down.half_width = hw;
-  for_rows(hh, [&](int y) {
-    // Only the last texel of a row of odd width has a block column outside the image.
-    const int interior = w % 2 == 0 ? hw : hw - 1;
-    BOUNCE_IVDEP
-    for (int x = 0; x < interior; ++x) denoise::downsample_pixel<false>(down, x, y);
-    for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true>(down, x, y);
-  });
-  compute_depth_slope(b.half_surface.geometry[0], hw, hh, b.half_slope.data());
-  denoise::AtrousPass pass = base;
-  pass.surface = std::as_const(b.half_surface).view();
-  pass.depth_slope = b.half_slope.data();
-  pass.direct = {std::as_const(b.half_light[0]).rgb(0), b.half_light[0][3], {}, nullptr};
-  pass.width = hw;
-  pass.height = hh;
-  const denoise::AtrousPass result =
-      run_atrous(pass, false, iterations, [&](int k, denoise::AtrousPass& p) {
-        Planes<4>& out = b.half_light[1 + (k & 1)];
-        p.direct.out = out.rgb(0);
-        p.direct.out_var = out[3];
-      });
-  denoise::HalfUpsample up;
-  up.surface = base.surface;
-  up.depth_slope = base.depth_slope;
-  up.light = light;
-  up.half_surface = std::as_const(b.half_surface).view();
-  up.half_light = result.direct.in;
-  up.width = w;
-  up.height = h;
-  up.half_width = hw;
-  up.half_height = hh;
-  up.sigma_depth = base.sigma_depth;
-  up.out = b.upsampled.rgb(0);
-  for_rows(h, [&](int y) {
-    const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(up, y);
-    // Columns 0 and w - 1 may read texels outside the half image.
-    row_loop(
-        w, 1,
-        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE { denoise::upsample_pixel<true>(up, rows, x, y); },
-        [&](int x)
-            BOUNCE_DENOISE_LAMBDA_INLINE { denoise::upsample_pixel<false>(up, rows, x, y); });
-  });
-  return std::as_const(b.upsampled).rgb(0);
-}
 
 Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   DenoiseSettings& s = settings_;
@@ -404,6 +384,9 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   params_.add_int("rest_atrous_frames", &s.rest_atrous_frames, 0, 1 << 20,
                   "frames at rest after which direct light gets one a-trous pass fewer, and one "
                   "fewer per doubling (0: never)");
+  params_.add_int("half_direct_frames", &s.half_direct_frames, 0, 1 << 20,
+                  "frames after a reset during which direct light is filtered at half "
+                  "resolution with one a-trous pass fewer (0: never)");
   params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
                   "a-trous passes over indirect light at 512 pixels of image height "
                   "(one more per doubling)");
@@ -510,6 +493,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
   // changed); saturates.
   b.rest_frames = rest && !resized ? std::min(b.rest_frames, (1 << 30) - 1) + 1 : 0;
+  b.history_frames =
+      state == HistoryState::kReset ? 0 : std::min(b.history_frames, (1 << 30) - 1) + 1;
 
   ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
   ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
@@ -551,15 +536,19 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       box_column(variance, y);
     });
   }
-  // The a-trous passes: direct light (with indirect light when both share the passes), then
-  // indirect light alone.
+  // The a-trous passes: at full resolution direct light (with indirect light when both share the
+  // passes), then indirect light alone; at half resolution the lights the plan puts there.
   const denoise::AtrousPass base =
       denoise::atrous_base(s, b.surface.view(), b.depth_slope.data(), light_d, b.variance[0],
                            light_i, b.variance[1], w, h);
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames);
-  const int indirect_iterations = plan.indirect_iterations;
-  const bool half = plan.half, both = plan.both;
-  if (spatial) {
+  const denoise::AtrousPlan plan =
+      denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
+  const CpuPasses passes;
+  auto atrous = [&](const denoise::AtrousPass& pass, bool both, bool variance) {
+    passes.atrous(pass, both, variance);
+  };
+  const bool both = plan.both;
+  if (spatial && !plan.direct_half) {
     ScopedStage stage(frame.times, "denoise/atrous");
     auto outputs = [&](int k, denoise::AtrousPass& pass) {
       Planes<8>& out = b.filter[k & 1];
@@ -568,27 +557,30 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       pass.indirect.out = out.rgb(kFilterIndirect);
       pass.indirect.out_var = out[kVarIndirect];
     };
-    const denoise::AtrousPass result = run_atrous(base, both, plan.direct_iterations, outputs);
+    const int n = plan.direct_iterations;
+    const denoise::AtrousPass result = denoise::run_atrous(atrous, base, both, 0, n, n, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
-  if (indirect_iterations > 0 && !both) {
+  if (plan.direct_half || plan.half) {
+    // (Both lights at half resolution count as the direct stage, as both at full resolution do.)
+    ScopedStage stage(frame.times, plan.direct_half ? "denoise/atrous" : "denoise/indirect");
+    denoise::filter_half(passes, base, plan, b.half_planes(), light_d, light_i);
+  }
+  if (plan.indirect_iterations > 0 && !both && !plan.half) {
     ScopedStage stage(frame.times, "denoise/indirect");
-    // Indirect light alone, in the pass's first slot with its own luminance sigma.
+    // Indirect light alone, in the pass's first slot with its own luminance sigma; the direct
+    // result sits in the ping-pong planes' direct slots, so it writes the others.
     denoise::AtrousPass indirect_base = base;
     indirect_base.direct = base.indirect;
     indirect_base.sigma_luminance = s.sigma_luminance_indirect;
-    if (half) {
-      light_i = b.filter_half_indirect(indirect_base, light_i, indirect_iterations);
-    } else {
-      // (The direct result sits in the ping-pong planes' direct slots; these are the others.)
-      auto outputs = [&](int k, denoise::AtrousPass& pass) {
-        Planes<8>& out = b.filter[k & 1];
-        pass.direct.out = out.rgb(kFilterIndirect);
-        pass.direct.out_var = out[kVarIndirect];
-      };
-      light_i = run_atrous(indirect_base, false, indirect_iterations, outputs).direct.in;
-    }
+    auto outputs = [&](int k, denoise::AtrousPass& pass) {
+      Planes<8>& out = b.filter[k & 1];
+      pass.direct.out = out.rgb(kFilterIndirect);
+      pass.direct.out_var = out[kVarIndirect];
+    };
+    const int n = plan.indirect_iterations;
+    light_i = denoise::run_atrous(atrous, indirect_base, false, 0, n, n, outputs).direct.in;
   }
   {
     ScopedStage stage(frame.times, "denoise/remodulate");

@@ -37,6 +37,11 @@ struct DenoiseSettings {
   // doubling after that, down to one (0: never). The mean of a long history needs less
   // filtering (direct_iterations_at_rest).
   int rest_atrous_frames = 32;
+  // For this many frames after a reset (the first frame of a still or of a new view, when no
+  // pixel has history), direct light is filtered at half resolution, as indirect light is, with
+  // one a-trous pass fewer (0: never). One frame's light samples leave noise wider than the
+  // full-resolution passes reach.
+  int half_direct_frames = 4;
   // a-trous passes over indirect light at its resolution, for an image 512 pixels high; one
   // more per doubling of the height, one fewer per halving (indirect_iterations_for)
   int indirect_iterations = 5;
