@@ -781,6 +781,35 @@ TEST(Denoiser, DirectFilterThinsOnlyAfterTheFadeFrames) {
   }
 }
 
+// A long rest drops one indirect pass, once: until rest_indirect_frames frames at rest the image is
+// the full filter's, from then on it is that of a filter with one pass fewer, however long the
+// rest lasts.
+TEST(Denoiser, IndirectFilterDropsOnePassAfterTheRestFrames) {
+  const int n = 24, fade = 4, frames = 3 * fade;
+  const GBuffer g = plane(n, n);
+  Pcg32 rng(47);
+  // (24 pixels high: indirect_iterations_for gives 4 passes for 8, 3 for 7.)
+  Denoiser faded, full, fewer;
+  faded.settings().rest_indirect_frames = fade;
+  for (Denoiser* d : {&full, &fewer}) d->settings().rest_indirect_frames = 0;
+  for (Denoiser* d : {&faded, &full}) d->settings().indirect_iterations = 8;
+  fewer.settings().indirect_iterations = 7;
+  const Image direct(n, n, vec3(1.0f));
+  for (int k = 0; k < frames; ++k) {
+    const Image light = noisy(n, n, rng, 0.5f, [](int x, int) { return x < 12 ? 1.0f : 2.0f; });
+    const HistoryState state = k == 0 ? HistoryState::kReset : HistoryState::kRest;
+    const Image a = run(faded, g, state, direct, &light).indirect;
+    const Image b = run(full, g, state, direct, &light).indirect;
+    const Image c = run(fewer, g, state, direct, &light).indirect;
+    if (k < fade) {
+      EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+    } else {
+      EXPECT_EQ(a.pixels(), c.pixels()) << "frame " << k;
+      EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
+    }
+  }
+}
+
 // Rows are filtered independently: one thread or two give the same image, bit for bit.
 TEST(Denoiser, ResultDoesNotDependOnTheThreadCount) {
   GBuffer g = World::seen_from(ivec2(0));

@@ -67,6 +67,9 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   if (p.direct_half) p.direct_iterations = std::max(p.direct_iterations - 1, 1);
   p.indirect_iterations =
       spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, height) : 0;
+  if (p.indirect_iterations > 1 && s.rest_indirect_frames > 0 &&
+      rest_frames >= s.rest_indirect_frames)
+    --p.indirect_iterations;
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
   p.both = p.indirect_iterations > 0 && !p.half && !p.direct_half &&
            p.indirect_iterations == p.direct_iterations;

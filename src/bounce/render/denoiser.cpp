@@ -390,6 +390,9 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
   params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
                   "a-trous passes over indirect light at 512 pixels of image height "
                   "(one more per doubling)");
+  params_.add_int("rest_indirect_frames", &s.rest_indirect_frames, 0, 1 << 20,
+                  "frames at rest after which indirect light gets one a-trous pass fewer "
+                  "(0: never)");
   params_.add_int("indirect_resolution", &s.indirect_resolution, 1, 2,
                   "indirect light is filtered at 1/N of the width and height (1 or 2)");
   params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
