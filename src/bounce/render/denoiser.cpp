@@ -212,17 +212,28 @@ void box_row(const denoise::BoxPass& p, int y) {
   }
 }
 
-// The spatial variance of row y: the column sums of the row sums, then box_variance, over the
-// row in a loop the compiler vectorises.
+// The spatial variance of row y: the column sums of the row sums into a row buffer, then
+// box_variance over the row. Each is a loop over the row the compiler vectorises (summing the
+// column inside the pixel loop would leave it scalar).
 void box_column(const denoise::VariancePass& p, int y) {
   constexpr int r = denoise::kVarianceBox;
   const int y0 = std::max(y - r, 0), y1 = std::min(y + r, p.height - 1);
   const size_t w = size_t(p.width), row = size_t(y) * w;
+  thread_local std::vector<float> columns;
+  columns.assign(5 * w, 0.0f);
+  const float* c[5];
+  for (int k = 0; k < 5; ++k) {
+    float* out = columns.data() + size_t(k) * w;
+    c[k] = out;
+    for (int qy = y0; qy <= y1; ++qy) {
+      const float* in = p.sums[k] + size_t(qy) * w;
+      BOUNCE_IVDEP
+      for (size_t x = 0; x < w; ++x) out[x] += in[x];
+    }
+  }
   BOUNCE_IVDEP
   for (size_t x = 0; x < w; ++x) {
-    float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-    for (int qy = y0; qy <= y1; ++qy)
-      for (int k = 0; k < 5; ++k) s[k] += p.sums[k][size_t(qy) * w + x];
+    const float s[5] = {c[0][x], c[1][x], c[2][x], c[3][x], c[4][x]};
     denoise::box_variance(p, row + x, s);
   }
 }
