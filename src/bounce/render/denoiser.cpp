@@ -97,15 +97,25 @@ template <bool kIndirect, bool kRest>
 void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
   for_rows(pass.height, [&](int y) {
     const denoise::TemporalPass p = pass;
+    const size_t first = size_t(y) * size_t(p.width);
+    uint32_t any_short = 0;  // (a bool reduction would not vectorise)
+    if (!p.s.history) {
+      // No history to reproject (a reset): every pixel starts from nothing.
+      const denoise::Reprojected none;
+      BOUNCE_IVDEP
+      for (int x = 0; x < p.width; ++x)
+        any_short |=
+            uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, first + size_t(x), none));
+      row_short[size_t(y)] = any_short != 0;
+      return;
+    }
     thread_local std::vector<float> row_planes;
     row_planes.resize(10 * size_t(p.width));
     denoise::ReprojectedRow row;
     for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
     for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
-    const size_t first = size_t(y) * size_t(p.width);
     const float* v[10];
     for (int c = 0; c < 10; ++c) v[c] = row.v[c];
-    uint32_t any_short = 0;  // (a bool reduction would not vectorise)
     BOUNCE_IVDEP
     for (int x = 0; x < p.width; ++x)
       any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
