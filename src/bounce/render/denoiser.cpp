@@ -109,6 +109,20 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
       row_short[size_t(y)] = any_short != 0;
       return;
     }
+    if (!p.s.reproject) {
+      // At rest every pixel keeps its own history (denoise::reproject): read it in place.
+      BOUNCE_IVDEP
+      for (int x = 0; x < p.width; ++x) {
+        const size_t i = first + size_t(x);
+        denoise::Reprojected same;
+        same.h = p.prev[i];
+        same.length = p.prev_length[i];
+        same.kept = true;
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, i, same));
+      }
+      row_short[size_t(y)] = any_short != 0;
+      return;
+    }
     thread_local std::vector<float> row_planes;
     row_planes.resize(10 * size_t(p.width));
     denoise::ReprojectedRow row;
