@@ -65,7 +65,8 @@ struct Reprojected {
   float length = 0.0f;
   bool kept = false;
 };
-BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size_t i) {
+BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int x, int y,
+                                                      size_t i) {
   Reprojected r;
   if (!p.s.reproject) {
     // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
@@ -93,8 +94,8 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
   const float z = p.g.depth[i], dz_max = p.s.depth_tolerance * z;
   const vec3 normal = p.g.normal[i];
   float weight = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    const int dx = k & 1, dy = k >> 1;
+  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+    constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     const int qx = x0 + dx, qy = y0 + dy;
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
     const size_t q = inside ? size_t(qy) * size_t(p.prev_width) + size_t(qx) : 0;
@@ -106,7 +107,7 @@ BOUNCE_HD inline Reprojected reproject(const TemporalPass& p, int x, int y, size
     weight += w;
     r.h.add(w, p.prev[q]);
     r.length += w * p.prev_length[q];
-  }
+  });
   r.kept = weight >= kMinHistoryWeight;
   if (!r.kept) return Reprojected{};
   const float inv = 1.0f / weight;
