@@ -139,17 +139,36 @@ BOUNCE_HD inline HalfUpsampleRows half_upsample_rows(const HalfUpsample& p, int 
   return {{size_t(r0) * size_t(p.half_width), size_t(r1) * size_t(p.half_width)}, {1.0f - ty, ty}};
 }
 
+// The half image's planes an upsample reads, in one order: depth, normal x, y, z, then each
+// light's r, g, b.
+template <int kLights>
+inline constexpr int kHalfChannels = 4 + 3 * kLights;
+template <int kLights>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void half_channels(const HalfUpsample& p,
+                                                   const float* (&c)[kHalfChannels<kLights>]) {
+  c[0] = p.half_surface.depth;
+  c[1] = p.half_surface.nx;
+  c[2] = p.half_surface.ny;
+  c[3] = p.half_surface.nz;
+  for (int l = 0; l < kLights; ++l) {
+    c[4 + 3 * l] = p.half_light[l].r;
+    c[5 + 3 * l] = p.half_light[l].g;
+    c[6 + 3 * l] = p.half_light[l].b;
+  }
+}
+
 // Full-resolution pixel x of row y (rows from half_upsample_rows), for the first kLights lights.
-// kClamp: texel columns are clamped to the image (the first and last columns; a row's interior
-// needs no test).
-template <bool kClamp, int kLights>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
-                                                    const HalfUpsampleRows& rows, int x, int y) {
+// texel(dx, dy) gives the planes (half_channels' order) and index of texel column hx0 + dx in
+// texel row dy, hx0 as below: the launcher decides how texels are laid out.
+template <int kLights, typename Texel>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
+                                                   const HalfUpsampleRows& rows, int x, int y,
+                                                   const Texel& texel) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
   const float z = p.surface.depth[i];
   const float nx = p.surface.nx[i], ny = p.surface.ny[i], nz = p.surface.nz[i];
-  // Even columns sit a quarter texel right of a texel centre, odd ones a quarter left.
-  const int hx0 = (x >> 1) - 1 + (x & 1);
+  // Even columns sit a quarter texel right of a texel centre (hx0 = x / 2 - 1), odd ones a
+  // quarter left (hx0 = x / 2).
   const float tx = (x & 1) ? 0.25f : 0.75f;
   // A texel counts where it lies on this pixel's surface: its normal within the block test's
   // cosine, and its depth within what the local slope allows over the two pixels its centre can
@@ -161,21 +180,20 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
   float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, wsum = 0.0f;
   unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
-    int hx = hx0 + dx;
-    if constexpr (kClamp) hx = hx < 0 ? 0 : (hx >= p.half_width ? p.half_width - 1 : hx);
-    const size_t h = rows.row[dy] + size_t(hx);
+    const float* const* c = nullptr;
+    size_t h = 0;
+    texel(dx, dy, c, h);
     const float bilinear = (dx ? tx : 1.0f - tx) * rows.weight[dy];
-    const float zh = p.half_surface.depth[h];
-    const float cos_nh =
-        nx * p.half_surface.nx[h] + ny * p.half_surface.ny[h] + nz * p.half_surface.nz[h];
+    const float zh = c[0][h];
+    const float cos_nh = nx * c[1][h] + ny * c[2][h] + nz * c[3][h];
     const bool same =
         (zh > 0.0f) & (cos_nh >= kHalfNormalAgreement) & (std::fabs(zh - z) <= max_dz);
     const float w = same ? bilinear : 0.0f;
     unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
       constexpr int kL = decltype(l)::value;
-      r[kL] += w * p.half_light[kL].r[h];
-      g[kL] += w * p.half_light[kL].g[h];
-      b[kL] += w * p.half_light[kL].b[h];
+      r[kL] += w * c[4 + 3 * kL][h];
+      g[kL] += w * c[5 + 3 * kL][h];
+      b[kL] += w * c[6 + 3 * kL][h];
     });
     wsum += w;
   });
@@ -189,12 +207,28 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_pixel(const HalfUpsample& p,
   });
 }
 
+// upsample_from reading the half image's planes in place, texel columns clamped to the image.
+template <int kLights>
+BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, const HalfUpsampleRows& rows, int x,
+                                     int y) {
+  const float* c[kHalfChannels<kLights>];
+  half_channels<kLights>(p, c);
+  const int hx0 = (x >> 1) - 1 + (x & 1);
+  upsample_from<kLights>(p, rows, x, y,
+                         [&](int dx, int dy, const float* const*& planes, size_t& h) {
+                           int hx = hx0 + dx;
+                           hx = hx < 0 ? 0 : (hx >= p.half_width ? p.half_width - 1 : hx);
+                           planes = c;
+                           h = rows.row[dy] + size_t(hx);
+                         });
+}
+
 // The whole upsample at pixel (x, y), for a launcher that runs one thread per pixel.
 BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, int x, int y) {
   if (p.lights == 2)
-    upsample_pixel<true, 2>(p, half_upsample_rows(p, y), x, y);
+    upsample_pixel<2>(p, half_upsample_rows(p, y), x, y);
   else
-    upsample_pixel<true, 1>(p, half_upsample_rows(p, y), x, y);
+    upsample_pixel<1>(p, half_upsample_rows(p, y), x, y);
 }
 
 }  // namespace bounce::denoise

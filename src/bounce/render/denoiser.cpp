@@ -309,20 +309,46 @@ struct CpuPasses {
       for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true, kLights>(p, x, y);
     });
   }
+  // Each texel row the row reads is laid out with every texel twice (and the first and last once
+  // more at the ends, where texel columns are clamped): pixel x's texel columns hx0 and hx0 + 1
+  // are then entries x and x + 2, so the pixel loop reads consecutive entries and vectorises
+  // (read in place, texel columns step by half a texel per pixel).
   template <int kLights>
   static void upsample_rows(const denoise::HalfUpsample& up) {
+    constexpr int kChannels = denoise::kHalfChannels<kLights>;
     for_rows(up.height, [&](int y) {
       const denoise::HalfUpsample p = up;
       const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(p, y);
-      // Columns 0 and w - 1 may read texels outside the half image.
-      row_loop(
-          p.width, 1,
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::upsample_pixel<true, kLights>(p, rows, x, y);
-          },
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::upsample_pixel<false, kLights>(p, rows, x, y);
-          });
+      const int hw = p.half_width;
+      const size_t n = 2 * size_t(hw) + 2;
+      thread_local std::vector<float> doubled;
+      doubled.resize(2 * kChannels * n);
+      const float* source[kChannels];
+      denoise::half_channels<kLights>(p, source);
+      const float* planes[2][kChannels];
+      for (int dy = 0; dy < 2; ++dy)
+        for (int c = 0; c < kChannels; ++c) {
+          float* d = doubled.data() + size_t(dy * kChannels + c) * n;
+          const float* t = source[c] + rows.row[dy];
+          BOUNCE_IVDEP
+          for (int m = 0; m < hw; ++m) {
+            d[1 + 2 * m] = t[m];
+            d[2 + 2 * m] = t[m];
+          }
+          d[0] = t[0];
+          d[n - 1] = t[hw - 1];
+          planes[dy][c] = d;
+        }
+      const float* const* row0 = planes[0];
+      const float* const* row1 = planes[1];
+      BOUNCE_IVDEP
+      for (int x = 0; x < p.width; ++x)
+        denoise::upsample_from<kLights>(
+            p, rows, x, y,
+            [&](int dx, int dy, const float* const*& c, size_t& h) BOUNCE_DENOISE_LAMBDA_INLINE {
+              c = dy ? row1 : row0;
+              h = size_t(x + 2 * dx);  // entry x - 1 or x + 1 of the texels from d + 1
+            });
     });
   }
 };
