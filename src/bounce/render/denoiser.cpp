@@ -217,7 +217,13 @@ void box_row(const denoise::BoxPass& p, int y) {
   constexpr int r = denoise::kVarianceBox;
   const size_t n = size_t(p.width) + 2 * r;
   thread_local std::vector<float> moments;
-  moments.assign(5 * n, 0.0f);
+  moments.resize(5 * n);
+  // (Only the r entries at each end stay zero; the loop below writes the rest.)
+  for (int k = 0; k < 5; ++k) {
+    float* m = moments.data() + size_t(k) * n;
+    std::fill(m, m + r, 0.0f);
+    std::fill(m + n - r, m + n, 0.0f);
+  }
   const size_t row = size_t(y) * size_t(p.width);
   for (int x = 0; x < p.width; ++x) {
     float m[5];
@@ -244,12 +250,13 @@ void box_column(const denoise::VariancePass& p, int y) {
   const int y0 = std::max(y - r, 0), y1 = std::min(y + r, p.height - 1);
   const size_t w = size_t(p.width), row = size_t(y) * w;
   thread_local std::vector<float> columns;
-  columns.assign(5 * w, 0.0f);
+  columns.resize(5 * w);
   const float* c[5];
   for (int k = 0; k < 5; ++k) {
     float* out = columns.data() + size_t(k) * w;
     c[k] = out;
-    for (int qy = y0; qy <= y1; ++qy) {
+    std::copy_n(p.sums[k] + size_t(y0) * w, w, out);
+    for (int qy = y0 + 1; qy <= y1; ++qy) {
       const float* in = p.sums[k] + size_t(qy) * w;
       BOUNCE_IVDEP
       for (size_t x = 0; x < w; ++x) out[x] += in[x];
