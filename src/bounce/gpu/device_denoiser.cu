@@ -249,9 +249,8 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
                   : device_denoise::temporal<false, false>(temporal, row_short);
   }
   rest_valid_ = rest || state == HistoryState::kReset;
-  rest_frames_ = rest && !resized ? std::min(rest_frames_, (1 << 30) - 1) + 1 : 0;
-  history_frames_ =
-      state == HistoryState::kReset ? 0 : std::min(history_frames_, (1 << 30) - 1) + 1;
+  rest_frames_ = rest && !resized ? denoise::next_count(rest_frames_) : 0;
+  history_frames_ = state == HistoryState::kReset ? 0 : denoise::next_count(history_frames_);
 
   ConstRgbPlanes light_d = light_direct_.view();
   ConstRgbPlanes light_i = light_indirect_.view();
@@ -281,9 +280,6 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   const denoise::AtrousPlan plan =
       denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_, history_frames_);
   const device_denoise::DevicePasses passes;
-  auto atrous = [&](const denoise::AtrousPass& pass, bool both, bool variance) {
-    passes.atrous(pass, both, variance);
-  };
   const bool both = plan.both;
   if (spatial && !plan.direct_half) {
     auto outputs = [this](int k, denoise::AtrousPass& pass) {
@@ -294,7 +290,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     };
     const int iterations = plan.direct_iterations;
     const denoise::AtrousPass result =
-        denoise::run_atrous(atrous, base, both, 0, iterations, iterations, outputs);
+        denoise::run_atrous(passes, base, both, 0, iterations, iterations, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
@@ -322,7 +318,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
       p.direct.out_var = filter_var_indirect_[k & 1].data();
     };
     const int iterations = plan.indirect_iterations;
-    light_i = denoise::run_atrous(atrous, indirect_base, false, 0, iterations, iterations, outputs)
+    light_i = denoise::run_atrous(passes, indirect_base, false, 0, iterations, iterations, outputs)
                   .direct.in;
   }
   const denoise::RemodulatePass remodulate{

@@ -76,18 +76,23 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   return p;
 }
 
+// A frame counter one frame on, saturating far below overflow.
+inline int next_count(int frames) {
+  return std::min(frames, (1 << 30) - 1) + 1;
+}
+
 // Passes first .. first + count - 1 of an a-trous filter (steps 2^k) from `pass`'s inputs: over
 // its direct slot alone, or over both slots sharing the geometric weights (`both`).
-// outputs(k, pass) points pass k's outputs at their planes; atrous(pass, both, variance) runs one
-// pass on the backend. The filter ends after pass `end - 1`, whose variance would guide nothing.
-// Returns the pass whose inputs are the results.
-template <typename Atrous, typename Outputs>
-AtrousPass run_atrous(const Atrous& atrous, AtrousPass pass, bool both, int first, int count,
+// outputs(k, pass) points pass k's outputs at their planes; passes.atrous(pass, both, variance)
+// runs one pass on the backend. The filter ends after pass `end - 1`, whose variance would guide
+// nothing. Returns the pass whose inputs are the results.
+template <typename Passes, typename Outputs>
+AtrousPass run_atrous(const Passes& passes, AtrousPass pass, bool both, int first, int count,
                       int end, const Outputs& outputs) {
   for (int k = first; k < first + count; ++k) {
     outputs(k, pass);
     pass.step = 1 << k;
-    atrous(pass, both, k + 1 < end);
+    passes.atrous(pass, both, k + 1 < end);
     pass.direct.in = pass.direct.out;
     pass.direct.in_var = pass.direct.out_var;
     pass.indirect.in = pass.indirect.out;
@@ -165,19 +170,17 @@ void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPla
     outputs_of(0)(k, p);
     outputs_of(1)(k, p);
   };
-  auto atrous = [&](const AtrousPass& p, bool both, bool variance) {
-    backend.atrous(p, both, variance);
-  };
   // Both lights share the passes they both take; the one with more passes goes on alone.
   const int shared = lights == 2 ? std::min(nd, ni) : 0;
-  pass = run_atrous(atrous, pass, true, 0, shared, std::max(nd, ni), outputs_both);
+  pass = run_atrous(backend, pass, true, 0, shared, std::max(nd, ni), outputs_both);
   ConstRgbPlanes filtered[kHalfMaxLights];
   if (lights == 1) {
     filtered[0] =
-        run_atrous(atrous, pass, false, 0, std::max(nd, ni), std::max(nd, ni), outputs_of(0))
+        run_atrous(backend, pass, false, 0, std::max(nd, ni), std::max(nd, ni), outputs_of(0))
             .direct.in;
   } else if (nd > shared) {
-    filtered[0] = run_atrous(atrous, pass, false, shared, nd - shared, nd, outputs_of(0)).direct.in;
+    filtered[0] =
+        run_atrous(backend, pass, false, shared, nd - shared, nd, outputs_of(0)).direct.in;
     filtered[1] = pass.indirect.in;
   } else {
     // Indirect light alone in the direct slot, writing the ping-pong's indirect planes.
@@ -189,7 +192,7 @@ void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPla
       p.direct.out_var = half.variance[1 + (k & 1)][1];
     };
     filtered[0] = pass.direct.in;
-    filtered[1] = run_atrous(atrous, alone, false, shared, ni - shared, ni, outputs).direct.in;
+    filtered[1] = run_atrous(backend, alone, false, shared, ni - shared, ni, outputs).direct.in;
   }
 
   HalfUpsample up;

@@ -106,10 +106,7 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
       for (int x = 0; x < p.width; ++x)
         any_short |=
             uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, first + size_t(x), none));
-      row_short[size_t(y)] = any_short != 0;
-      return;
-    }
-    if (!p.s.reproject) {
+    } else if (!p.s.reproject) {
       // At rest every pixel keeps its own history (denoise::reproject): read it in place.
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x) {
@@ -120,20 +117,19 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
         same.kept = true;
         any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, i, same));
       }
-      row_short[size_t(y)] = any_short != 0;
-      return;
+    } else {
+      thread_local std::vector<float> row_planes;
+      row_planes.resize(10 * size_t(p.width));
+      denoise::ReprojectedRow row;
+      for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
+      for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
+      const float* v[10];
+      for (int c = 0; c < 10; ++c) v[c] = row.v[c];
+      BOUNCE_IVDEP
+      for (int x = 0; x < p.width; ++x)
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
+            p, first + size_t(x), denoise::load_reprojected(v, x)));
     }
-    thread_local std::vector<float> row_planes;
-    row_planes.resize(10 * size_t(p.width));
-    denoise::ReprojectedRow row;
-    for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
-    for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
-    const float* v[10];
-    for (int c = 0; c < 10; ++c) v[c] = row.v[c];
-    BOUNCE_IVDEP
-    for (int x = 0; x < p.width; ++x)
-      any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
-          p, first + size_t(x), denoise::load_reprojected(v, x)));
     row_short[size_t(y)] = any_short != 0;
   });
 }
@@ -563,9 +559,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   b.rest_valid = rest || state == HistoryState::kReset;
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
   // changed); saturates.
-  b.rest_frames = rest && !resized ? std::min(b.rest_frames, (1 << 30) - 1) + 1 : 0;
-  b.history_frames =
-      state == HistoryState::kReset ? 0 : std::min(b.history_frames, (1 << 30) - 1) + 1;
+  b.rest_frames = rest && !resized ? denoise::next_count(b.rest_frames) : 0;
+  b.history_frames = state == HistoryState::kReset ? 0 : denoise::next_count(b.history_frames);
 
   ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
   ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
@@ -615,9 +610,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const denoise::AtrousPlan plan =
       denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
   const CpuPasses passes;
-  auto atrous = [&](const denoise::AtrousPass& pass, bool both, bool variance) {
-    passes.atrous(pass, both, variance);
-  };
   const bool both = plan.both;
   if (spatial && !plan.direct_half) {
     ScopedStage stage(frame.times, "denoise/atrous");
@@ -629,7 +621,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       pass.indirect.out_var = out[kVarIndirect];
     };
     const int n = plan.direct_iterations;
-    const denoise::AtrousPass result = denoise::run_atrous(atrous, base, both, 0, n, n, outputs);
+    const denoise::AtrousPass result = denoise::run_atrous(passes, base, both, 0, n, n, outputs);
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
@@ -651,7 +643,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       pass.direct.out_var = out[kVarIndirect];
     };
     const int n = plan.indirect_iterations;
-    light_i = denoise::run_atrous(atrous, indirect_base, false, 0, n, n, outputs).direct.in;
+    light_i = denoise::run_atrous(passes, indirect_base, false, 0, n, n, outputs).direct.in;
   }
   {
     ScopedStage stage(frame.times, "denoise/remodulate");
