@@ -14,6 +14,7 @@
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/core/rng.h"
+#include "bounce/render/denoise_half.h"
 #include "bounce/render/denoiser.h"
 
 namespace bounce {
@@ -232,16 +233,106 @@ TEST(Denoiser, BothLightsAtHalfResolutionMatchEachAlone) {
     for (Denoiser* d : {&both, &direct_alone, &indirect_alone})
       d->settings().indirect_iterations = indirect_iterations + 4;  // (32 pixels high: 4 fewer)
     indirect_alone.settings().half_direct_frames = 0;
-    const Output out = run(both, g, HistoryState::kReset, direct, &indirect);
-    const Image d = run(direct_alone, g, HistoryState::kReset, direct).direct;
-    const Image i = run(indirect_alone, g, HistoryState::kReset, direct, &indirect).indirect;
-    for (size_t k = 0; k < g.size(); ++k) {
-      expect_near_rel(out.direct.pixels()[k], d.pixels()[k], 1e-5f, "direct");
-      expect_near_rel(out.indirect.pixels()[k], i.pixels()[k], 1e-5f, "indirect");
+    // Frames 0 to 3 after a reset are filtered with direct light at half resolution. Up to frame
+    // 2 the spatial variance is estimated at half resolution too, which takes both lights
+    // there: indirect light alone (direct light at full resolution) is compared at frame 3.
+    for (int frame = 0; frame < 4; ++frame) {
+      SCOPED_TRACE(frame);
+      const HistoryState state = frame == 0 ? HistoryState::kReset : HistoryState::kRest;
+      const Output out = run(both, g, state, direct, &indirect);
+      const Image d = run(direct_alone, g, state, direct).direct;
+      const Image i = run(indirect_alone, g, state, direct, &indirect).indirect;
+      for (size_t k = 0; k < g.size(); ++k) {
+        expect_near_rel(out.direct.pixels()[k], d.pixels()[k], 1e-5f, "direct");
+        if (frame == 3) expect_near_rel(out.indirect.pixels()[k], i.pixels()[k], 1e-5f, "indirect");
+      }
+      // (And the direct light was filtered: it is not its input.)
+      EXPECT_NE(out.direct.pixels(), direct.pixels());
     }
-    // (And the direct light was filtered: it is not its input.)
-    EXPECT_NE(out.direct.pixels(), direct.pixels());
   }
+}
+
+// While every pixel's history is short and both lights are filtered at half resolution, the
+// spatial variance is estimated there: the variance of each texel's mean, a quarter of a
+// pixel's. Uniform noise of amplitude a around level m has variance m^2 a^2 / 3.
+TEST(Denoiser, SpatialVarianceAtHalfResolutionIsTheBlockMeans) {
+  const GBuffer g = plane(64, 64);
+  Pcg32 rng(41);
+  const Image direct = noisy(64, 64, rng, 0.5f, [](int, int) { return 1.0f; });
+  const Image indirect = noisy(64, 64, rng, 0.5f, [](int, int) { return 2.0f; });
+  const float pixel_variance = (1.0f + 4.0f) * 0.25f / 3.0f;
+  for (int half_direct_frames : {4, 0}) {  // at half resolution, then at full resolution
+    SCOPED_TRACE(half_direct_frames);
+    Denoiser d;
+    d.settings().half_direct_frames = half_direct_frames;
+    run(d, g, HistoryState::kReset, direct, &indirect);
+    Image view;
+    d.debug_view(DenoiseView::kVariance, view);
+    const float expected = std::sqrt(pixel_variance / (half_direct_frames > 0 ? 4.0f : 1.0f));
+    // Away from the image's border, where boxes are whole.
+    EXPECT_NEAR(mean_x(view, 8, 56, 8, 56), expected, 0.05f * expected);
+    for (int y = 8; y < 56; ++y)
+      for (int x = 8; x < 56; ++x) EXPECT_NEAR(view.at(x, y).x, expected, 0.4f * expected);
+  }
+}
+
+// At a reset every pixel's history holds its one frame: the block moments read from the light
+// equal those read from the history, and the rest of the texel is the same.
+TEST(Denoiser, ResetBlockMomentsFromTheLightEqualTheHistorys) {
+  constexpr int w = 7, h = 5, hw = 4, hh = 3;  // (odd sizes: clamped blocks at the edges)
+  Pcg32 rng(5);
+  std::vector<float> depth(w * h), nx(w * h, 0.0f), ny(w * h, 0.0f), nz(w * h, -1.0f);
+  std::vector<float> light[2][3];
+  std::vector<denoise::HistoryTexel> history(w * h);
+  for (auto& l : light)
+    for (auto& c : l) c.resize(w * h);
+  for (int i = 0; i < w * h; ++i) {
+    depth[i] = i % 5 == 3 ? 0.0f : 1.0f + 0.01f * rng.next_float();  // some pixels see nothing
+    vec3 c[2];
+    for (int l = 0; l < 2; ++l) {
+      c[l] = vec3(rng.next_float(), rng.next_float(), rng.next_float());
+      for (int k = 0; k < 3; ++k) light[l][k][i] = c[l][k];
+    }
+    const float ld = denoise::luminance_of(c[0]), li = denoise::luminance_of(c[1]);
+    history[i].direct = vec4(c[0], ld * ld);
+    history[i].indirect = vec4(c[1], li * li);
+  }
+  const std::vector<float> length(w * h, 0.0f);
+  // Per mode: depth, normal, each light's rgb and variance, the five moment sums.
+  std::vector<float> out[2][17];
+  for (int mode = 0; mode < 2; ++mode) {
+    for (auto& o : out[mode]) o.assign(hw * hh, -1.0f);
+    denoise::HalfDownsample p;
+    p.surface = {depth.data(), nx.data(), ny.data(), nz.data(), nullptr};
+    p.lights = 2;
+    for (int l = 0; l < 2; ++l) {
+      p.light[l] = {light[l][0].data(), light[l][1].data(), light[l][2].data()};
+      p.half_light[l] = {out[mode][4 + 4 * l].data(), out[mode][5 + 4 * l].data(),
+                         out[mode][6 + 4 * l].data()};
+      p.half_variance[l] = out[mode][7 + 4 * l].data();
+    }
+    p.width = w;
+    p.height = h;
+    p.half_surface = {out[mode][0].data(), out[mode][1].data(), out[mode][2].data(),
+                      out[mode][3].data(), nullptr};
+    p.half_width = hw;
+    p.moments = mode == 0 ? denoise::BlockMoments::kOneFrame : denoise::BlockMoments::kHistory;
+    p.history = mode == 0 ? nullptr : history.data();
+    p.length = mode == 0 ? nullptr : length.data();
+    p.cap_indirect = 3.0f;
+    for (int k = 0; k < 5; ++k) p.half_moments[k] = out[mode][12 + k].data();
+    for (int y = 0; y < hh; ++y)
+      for (int x = 0; x < hw; ++x) denoise::downsample_pixel(p, x, y);
+  }
+  // (Equal up to rounding: a compiler may fuse the square into the sum.)
+  for (int k = 0; k < 17; ++k)
+    for (int t = 0; t < hw * hh; ++t)
+      EXPECT_NEAR(out[0][k][size_t(t)], out[1][k][size_t(t)],
+                  1e-6f * std::fabs(out[1][k][size_t(t)]))
+          << k << " " << t;
+  // (Texels with a surface got a variance scale and moments.)
+  EXPECT_GT(out[0][7][0], 0.0f);
+  EXPECT_GT(out[0][16][0], 0.0f);
 }
 
 // The indirect filter's reach follows the image: photon blotches cover a fixed part of the view.

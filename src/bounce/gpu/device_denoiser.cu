@@ -76,6 +76,12 @@ void downsample(const denoise::HalfDownsample& pass, int half_height) {
             [=] __device__(int x, int y) { denoise::downsample_pixel(p, x, y); });
 }
 
+void half_variance(const denoise::HalfVariancePass& pass) {
+  const denoise::HalfVariancePass p = pass;
+  launch_2d(p.width, p.height,
+            [=] __device__(int x, int y) { denoise::half_variance_pixel(p, x, y); });
+}
+
 void upsample(const denoise::HalfUpsample& pass) {
   const denoise::HalfUpsample p = pass;
   launch_2d(p.width, p.height, [=] __device__(int x, int y) { denoise::upsample_pixel(p, x, y); });
@@ -91,6 +97,9 @@ struct DevicePasses {
   }
   void downsample(const denoise::HalfDownsample& pass, int half_height) const {
     device_denoise::downsample(pass, half_height);
+  }
+  void half_variance(const denoise::HalfVariancePass& pass) const {
+    device_denoise::half_variance(pass);
   }
   void upsample(const denoise::HalfUpsample& pass) const { device_denoise::upsample(pass); }
 };
@@ -162,6 +171,7 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   const size_t half_n = size_t(half_width_) * size_t(half_height_);
   half_surface_.resize(half_n);
   half_slope_.resize(half_n);
+  for (auto& m : half_moments_) m.resize(half_n);
   for (int k = 0; k < 3; ++k)
     for (int l = 0; l < denoise::kHalfMaxLights; ++l) {
       half_light_[k][l].resize(half_n);
@@ -256,8 +266,11 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   ConstRgbPlanes light_i = light_indirect_.view();
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const float* depth = surface_.depth.data();
-  if (spatial) {
-    device_denoise::depth_slope(depth, w, h, depth_slope_.data());
+  const denoise::AtrousPlan plan =
+      denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_, history_frames_);
+  if (spatial) device_denoise::depth_slope(depth, w, h, depth_slope_.data());
+  // (With the plan's half_variance, the half-resolution filter estimates it: filter_half.)
+  if (spatial && !plan.half_variance) {
     denoise::BoxPass box;
     box.history = history_.data();
     box.depth = depth;
@@ -277,8 +290,6 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   const denoise::AtrousPass base =
       denoise::atrous_base(s, ConstSurfacePlanes(surface_.view()), depth_slope_.data(), light_d,
                            var_direct_.data(), light_i, var_indirect_.data(), w, h);
-  const denoise::AtrousPlan plan =
-      denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_, history_frames_);
   const device_denoise::DevicePasses passes;
   const bool both = plan.both;
   if (spatial && !plan.direct_half) {
@@ -304,9 +315,12 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
         half.variance[k][l] = half_var_[k][l].data();
       }
     for (int l = 0; l < denoise::kHalfMaxLights; ++l) half.upsampled[l] = upsampled_[l].view();
+    for (int k = 0; k < 5; ++k) half.moments[k] = half_moments_[k].data();
     half.width = half_width_;
     half.height = half_height_;
-    denoise::filter_half(passes, base, plan, half, light_d, light_i);
+    const denoise::HalfVarianceInputs variance{history_.data(), length_.data(), cap_indirect,
+                                               history_frames_ == 0};
+    denoise::filter_half(passes, base, plan, half, variance, light_d, light_i);
   }
   if (plan.indirect_iterations > 0 && !both && !plan.half) {
     denoise::AtrousPass indirect_base = base;

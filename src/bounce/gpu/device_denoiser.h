@@ -58,6 +58,7 @@ class DeviceDenoiser {
   DeviceBuffer<float> filter_var_direct_[2], filter_var_indirect_[2];
   int half_width_ = 0, half_height_ = 0;
   DeviceBuffer<float> half_slope_;
+  DeviceBuffer<float> half_moments_[5];  // the spatial variance at half resolution
   // Per light slot (denoise::HalfPlanes): the downsampled input, the ping-pong, the result.
   Rgb half_light_[3][denoise::kHalfMaxLights];
   DeviceBuffer<float> half_var_[3][denoise::kHalfMaxLights];

@@ -19,6 +19,7 @@
 
 #include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/denoise_variance.h"
 
 namespace bounce::denoise {
 
@@ -31,6 +32,12 @@ inline constexpr float kHalfMinWeight = 1e-3f;
 // The lights a half-resolution pass carries at most (direct and indirect).
 inline constexpr int kHalfMaxLights = 2;
 
+// Where a half-resolution block's moments for the spatial variance come from: none (the variance
+// is the full-resolution estimate's), the history, or, when every pixel holds one frame (a
+// reset), the light itself (its luminance, squared for the second moment; what the history holds
+// then, without reading it).
+enum class BlockMoments { kNone, kOneFrame, kHistory };
+
 struct HalfDownsample {
   ConstSurfacePlanes surface;  // full resolution
   int lights = 1;              // how many entries of light, variance, half_* are used
@@ -42,12 +49,21 @@ struct HalfDownsample {
   RgbPlanes half_light[kHalfMaxLights];
   float* half_variance[kHalfMaxLights] = {};
   int half_width = 0;
+  // Unless `moments` is kNone, the spatial variance is estimated at half resolution
+  // (denoise_variance.h): the block's moments (box_moments, of all its pixels) are summed into
+  // half_moments, and half_variance receives the scale half_box_variance multiplies the box's
+  // variance by, instead of the variance of the full-resolution estimates (`variance` unread).
+  BlockMoments moments = BlockMoments::kNone;
+  const HistoryTexel* history = nullptr;  // kHistory: the accumulation, with its moments
+  const float* length = nullptr;          // kHistory: history length per pixel
+  float cap_indirect = 0.0f;
+  float* half_moments[5] = {};
 };
 
 // Half-resolution texel hx of row hy, for the first kLights lights. kClampX: the block's second
 // column may lie outside an image of odd width (the last texel of a row; the row loop's other
-// texels need no test). Branch-free, so the CPU's row loop vectorises.
-template <bool kClampX, int kLights>
+// texels need no test). kMoments: p.moments. Branch-free, so the CPU's row loop vectorises.
+template <bool kClampX, int kLights, BlockMoments kMoments>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
   const int x0 = 2 * hx, y0 = 2 * hy;
   const int x1 = kClampX && x0 + 1 >= p.width ? x0 : x0 + 1;
@@ -68,6 +84,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
   });
   const bool found = rep_depth < 1e30f;
   float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, var[kLights] = {}, count = 0.0f;
+  float moments[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
     const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
@@ -75,12 +92,33 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     const bool same = (z > 0.0f) & (cos_q >= kHalfNormalAgreement) &
                       (std::fabs(z - rep_depth) <= kHalfDepthAgreement * rep_depth);
     const float w = same ? 1.0f : 0.0f;
+    float pixel_var[kHalfMaxLights] = {};
+    if constexpr (kMoments == BlockMoments::kHistory) {
+      float m[5];
+      box_moments(p.history[q], z, m);
+      for (int c = 0; c < 5; ++c) moments[c] += m[c];
+      inverse_frames(p.length[q], p.cap_indirect, pixel_var[0], pixel_var[1]);
+    } else if constexpr (kMoments == BlockMoments::kOneFrame) {
+      const float on = z > 0.0f ? 1.0f : 0.0f;
+      unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+        constexpr int kL = decltype(l)::value;
+        const float m1 = on * luminance_of(p.light[kL].get(q));
+        moments[2 * kL] += m1;
+        moments[2 * kL + 1] += m1 * m1;
+        pixel_var[kL] = 1.0f;
+      });
+      moments[4] += on;
+    } else {
+      unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+        pixel_var[decltype(l)::value] = p.variance[decltype(l)::value][q];
+      });
+    }
     unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
       constexpr int kL = decltype(l)::value;
       r[kL] += w * p.light[kL].r[q];
       g[kL] += w * p.light[kL].g[q];
       b[kL] += w * p.light[kL].b[q];
-      var[kL] += w * p.variance[kL][q];
+      var[kL] += w * pixel_var[kL];
     });
     count += w;
   });
@@ -96,17 +134,30 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     p.half_light[kL].r[h] = r[kL] * inv;
     p.half_light[kL].g[h] = g[kL] * inv;
     p.half_light[kL].b[h] = b[kL] * inv;
-    // The variance of the block's mean.
+    // The variance of the block's mean (or, with kMoments, what scales the box's variance to it).
     p.half_variance[kL][h] = var[kL] * inv * inv;
   });
+  if constexpr (kMoments != BlockMoments::kNone)
+    for (int c = 0; c < 5; ++c) p.half_moments[c][h] = moments[c];
 }
 
 // The whole downsample at texel (hx, hy), for a launcher that runs one thread per texel.
+template <BlockMoments kMoments>
 BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
   if (p.lights == 2)
-    downsample_pixel<true, 2>(p, hx, hy);
+    downsample_pixel<true, 2, kMoments>(p, hx, hy);
   else
-    downsample_pixel<true, 1>(p, hx, hy);
+    downsample_pixel<true, 1, kMoments>(p, hx, hy);
+}
+BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+  switch (p.moments) {
+    case BlockMoments::kNone:
+      return downsample_pixel<BlockMoments::kNone>(p, hx, hy);
+    case BlockMoments::kOneFrame:
+      return downsample_pixel<BlockMoments::kOneFrame>(p, hx, hy);
+    case BlockMoments::kHistory:
+      return downsample_pixel<BlockMoments::kHistory>(p, hx, hy);
+  }
 }
 
 struct HalfUpsample {

@@ -51,6 +51,9 @@ struct AtrousPlan {
   bool half = false;            // indirect light filtered at half resolution
   // At full resolution with as many passes, both lights share each pass's geometry.
   bool both = false;
+  // The spatial variance estimated at half resolution (denoise_variance.h): every light is
+  // filtered there and every pixel's history is short.
+  bool half_variance = false;
 };
 
 // `rest_frames`: consecutive frames at rest up to this one (0 when not at rest);
@@ -73,6 +76,9 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
   p.both = p.indirect_iterations > 0 && !p.half && !p.direct_half &&
            p.indirect_iterations == p.direct_iterations;
+  // A pixel's history is at most history_frames long (it restarted at the reset).
+  p.half_variance = p.direct_half && (p.indirect_iterations == 0 || p.half) &&
+                    float(history_frames) + 1.0f < kShortHistory;
   return p;
 }
 
@@ -110,18 +116,30 @@ struct HalfPlanes {
   RgbPlanes light[3][kHalfMaxLights];
   float* variance[3][kHalfMaxLights] = {};
   RgbPlanes upsampled[kHalfMaxLights];
+  float* moments[5] = {};  // the blocks' moment sums, for AtrousPlan::half_variance
   int width = 0;
   int height = 0;
+};
+
+// What the spatial variance at half resolution reads at full resolution besides the light.
+struct HalfVarianceInputs {
+  const HistoryTexel* history = nullptr;  // this frame's accumulation, with its moments
+  const float* length = nullptr;          // its history length per pixel
+  float cap_indirect = 0.0f;
+  bool one_frame = false;  // every pixel holds one frame (a reset): neither is read
 };
 
 // The lights the plan filters at half resolution (direct_half, half), from `base`'s inputs at
 // full resolution: downsampled together, filtered (sharing the geometric weights for the passes
 // both take), upsampled together. Replaces light_d and light_i by the results of those filtered
-// here. The backend runs the passes: downsample(HalfDownsample), depth_slope(depth, w, h, out),
+// here. With plan.half_variance the spatial variance is estimated here from `variance`'s
+// inputs, and base's variance planes are not read. The backend runs the passes:
+// downsample(HalfDownsample), half_variance(HalfVariancePass), depth_slope(depth, w, h, out),
 // atrous(pass, both, variance), upsample(HalfUpsample).
 template <typename Backend>
 void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
-                 const HalfPlanes& half, ConstRgbPlanes& light_d, ConstRgbPlanes& light_i) {
+                 const HalfPlanes& half, const HalfVarianceInputs& variance,
+                 ConstRgbPlanes& light_d, ConstRgbPlanes& light_i) {
   const int nd = plan.direct_half ? plan.direct_iterations : 0;
   const int ni = plan.half ? plan.indirect_iterations : 0;
   if (nd == 0 && ni == 0) return;
@@ -146,7 +164,23 @@ void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPla
     down.half_light[l] = half.light[0][l];
     down.half_variance[l] = half.variance[0][l];
   }
+  if (plan.half_variance) {
+    down.moments = variance.one_frame ? BlockMoments::kOneFrame : BlockMoments::kHistory;
+    down.history = variance.history;
+    down.length = variance.length;
+    down.cap_indirect = variance.cap_indirect;
+    for (int k = 0; k < 5; ++k) down.half_moments[k] = half.moments[k];
+  }
   backend.downsample(down, half.height);
+  if (plan.half_variance) {
+    // (Direct light is filtered here, so it is slot 0; indirect light, if any, slot 1.)
+    HalfVariancePass v;
+    for (int k = 0; k < 5; ++k) v.moments[k] = half.moments[k];
+    for (int l = 0; l < lights; ++l) v.var[l] = half.variance[0][l];
+    v.width = half.width;
+    v.height = half.height;
+    backend.half_variance(v);
+  }
   backend.depth_slope(half.surface.depth, half.width, half.height, half.depth_slope);
 
   // Slot 0 rides in the pass's direct light, slot 1 in its indirect light.

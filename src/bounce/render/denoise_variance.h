@@ -90,14 +90,23 @@ struct VariancePass {
 // The box estimate at pixel i from its box sums `s`: where the history is short (and there is a
 // surface), the variance of the box's moments divided by the frames averaged replaces the
 // pixel's own; elsewhere the pixel keeps it. Branch-free, so a row loop vectorises.
+// The luminance variances of the moments of a box (box_moments' sums `s`): direct, indirect.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moment_variances(const float s[5], float& var_d,
+                                                          float& var_i) {
+  const float inv = 1.0f / (s[4] > 0.0f ? s[4] : 1.0f);
+  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
+  var_d = glm::max(m2_d - m1_d * m1_d, 0.0f);
+  var_i = glm::max(m2_i - m1_i * m1_i, 0.0f);
+}
+
 BOUNCE_HD BOUNCE_DENOISE_INLINE void box_variance(const VariancePass& p, size_t i,
                                                   const float s[5]) {
   const float frames = p.length[i] + 1.0f;
   const bool short_history = (frames < kShortHistory) & (p.depth[i] > 0.0f);
-  const float inv = 1.0f / (s[4] > 0.0f ? s[4] : 1.0f);
-  const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
-  const float var_d = glm::max(m2_d - m1_d * m1_d, 0.0f) / frames;
-  const float var_i = glm::max(m2_i - m1_i * m1_i, 0.0f) / glm::min(frames, p.cap_indirect + 1.0f);
+  float box_d, box_i;
+  box_moment_variances(s, box_d, box_i);
+  const float var_d = box_d / frames;
+  const float var_i = box_i / glm::min(frames, p.cap_indirect + 1.0f);
   p.var_direct[i] = short_history ? var_d : p.var_direct[i];
   p.var_indirect[i] = short_history ? var_i : p.var_indirect[i];
 }
@@ -112,6 +121,56 @@ BOUNCE_HD inline void spatial_variance_pixel(const VariancePass& p, int x, int y
     for (int c = 0; c < 5; ++c) s[c] += p.sums[c][q];
   }
   box_variance(p, i, s);
+}
+
+// ---- The spatial variance at half resolution ---------------------------------------------------
+// While every pixel's history is short (the first frames after a reset) and every light is
+// filtered at half resolution, the full-resolution estimate above would only be averaged over
+// 2x2 blocks by the downsample. Instead the downsample (denoise_half.h) sums each block's moments
+// and the box runs over half-resolution texels: a quarter of the pixels, and the history is read
+// once. The box is kHalfVarianceBox texels in radius, (4r + 2) pixels across.
+
+inline constexpr int kHalfVarianceBox = 2;
+
+// The frames a pixel's estimate averages, of direct and of indirect light (box_variance's
+// divisors), as their reciprocals.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void inverse_frames(float length, float cap_indirect, float& inv_d,
+                                                    float& inv_i) {
+  const float frames = length + 1.0f;
+  inv_d = 1.0f / frames;
+  inv_i = 1.0f / glm::min(frames, cap_indirect + 1.0f);
+}
+
+struct HalfVariancePass {
+  const float* moments[5] = {};  // the blocks' moment sums (box_moments' order)
+  // In: each texel's scale from the downsample (the sum over its pixels on its surface of
+  // 1 / frames, over their count squared; 0 without a surface). Out: the variance of the
+  // texel's mean. var[1] is null without indirect light.
+  float* var[2] = {};
+  int width = 0;
+  int height = 0;
+};
+
+// Texel h from its box's moment sums `s`.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void half_box_variance(const HalfVariancePass& p, size_t h,
+                                                       const float s[5]) {
+  float var_d, var_i;
+  box_moment_variances(s, var_d, var_i);
+  p.var[0][h] *= var_d;
+  if (p.var[1]) p.var[1][h] *= var_i;
+}
+
+// Texel (x, y), summing its box directly (a launcher with one thread per texel; the CPU sums the
+// box separably).
+BOUNCE_HD inline void half_variance_pixel(const HalfVariancePass& p, int x, int y) {
+  constexpr int r = kHalfVarianceBox;
+  float s[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (int qy = glm::max(y - r, 0); qy <= glm::min(y + r, p.height - 1); ++qy)
+    for (int qx = glm::max(x - r, 0); qx <= glm::min(x + r, p.width - 1); ++qx) {
+      const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
+      for (int k = 0; k < 5; ++k) s[k] += p.moments[k][q];
+    }
+  half_box_variance(p, size_t(y) * size_t(p.width) + size_t(x), s);
 }
 
 }  // namespace bounce::denoise

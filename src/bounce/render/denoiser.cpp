@@ -206,6 +206,34 @@ void compute_depth_slope(const float* depth, int w, int h, float* slope) {
   });
 }
 
+// Box sums of radius kRadius along a row of `width` entries, from the row padded with kRadius
+// zeros at each end (a loop the compiler vectorises).
+template <int kRadius>
+void padded_row_sums(const float* padded, int width, float* out) {
+  BOUNCE_IVDEP
+  for (int x = 0; x < width; ++x) {
+    float s = 0.0f;
+    for (int d = 0; d <= 2 * kRadius; ++d) s += padded[x + d];
+    out[x] = s;
+  }
+}
+
+// Into `out`, the sums of rows y - kRadius .. y + kRadius (clamped to the image) of the five
+// planes `sums`, each a row buffer of width entries.
+template <int kRadius>
+void column_sums(const float* const (&sums)[5], size_t width, int y, int height, float* out) {
+  const int y0 = std::max(y - kRadius, 0), y1 = std::min(y + kRadius, height - 1);
+  for (int k = 0; k < 5; ++k) {
+    float* o = out + size_t(k) * width;
+    std::copy_n(sums[k] + size_t(y0) * width, width, o);
+    for (int qy = y0 + 1; qy <= y1; ++qy) {
+      const float* in = sums[k] + size_t(qy) * width;
+      BOUNCE_IVDEP
+      for (size_t x = 0; x < width; ++x) o[x] += in[x];
+    }
+  }
+}
+
 // The spatial variance's row sums for row y (denoise_variance.h), on the CPU: each pixel's
 // moments once into a padded row, then each box as a sum over that row, in a loop the compiler
 // vectorises (box_row_pixel gathers its box's texels per pixel instead).
@@ -226,38 +254,20 @@ void box_row(const denoise::BoxPass& p, int y) {
     denoise::box_moments(p.history[row + size_t(x)], p.depth[row + size_t(x)], m);
     for (int k = 0; k < 5; ++k) moments[size_t(k) * n + size_t(x + r)] = m[k];
   }
-  for (int k = 0; k < 5; ++k) {
-    const float* m = moments.data() + size_t(k) * n;
-    float* out = p.sums[k] + row;
-    BOUNCE_IVDEP
-    for (int x = 0; x < p.width; ++x) {
-      float s = 0.0f;
-      for (int d = 0; d <= 2 * r; ++d) s += m[x + d];
-      out[x] = s;
-    }
-  }
+  for (int k = 0; k < 5; ++k)
+    padded_row_sums<r>(moments.data() + size_t(k) * n, p.width, p.sums[k] + row);
 }
 
 // The spatial variance of row y: the column sums of the row sums into a row buffer, then
 // box_variance over the row. Each is a loop over the row the compiler vectorises (summing the
 // column inside the pixel loop would leave it scalar).
 void box_column(const denoise::VariancePass& p, int y) {
-  constexpr int r = denoise::kVarianceBox;
-  const int y0 = std::max(y - r, 0), y1 = std::min(y + r, p.height - 1);
   const size_t w = size_t(p.width), row = size_t(y) * w;
   thread_local std::vector<float> columns;
   columns.resize(5 * w);
+  column_sums<denoise::kVarianceBox>(p.sums, w, y, p.height, columns.data());
   const float* c[5];
-  for (int k = 0; k < 5; ++k) {
-    float* out = columns.data() + size_t(k) * w;
-    c[k] = out;
-    std::copy_n(p.sums[k] + size_t(y0) * w, w, out);
-    for (int qy = y0 + 1; qy <= y1; ++qy) {
-      const float* in = p.sums[k] + size_t(qy) * w;
-      BOUNCE_IVDEP
-      for (size_t x = 0; x < w; ++x) out[x] += in[x];
-    }
-  }
+  for (int k = 0; k < 5; ++k) c[k] = columns.data() + size_t(k) * w;
   BOUNCE_IVDEP
   for (size_t x = 0; x < w; ++x) {
     const float s[5] = {c[0][x], c[1][x], c[2][x], c[3][x], c[4][x]};
@@ -287,6 +297,8 @@ namespace {
 
 // The CPU's passes for the schedules both backends share (denoise_plan.h).
 struct CpuPasses {
+  float* const* half_rows;  // 5 half-resolution planes: half_variance's row sums
+
   void atrous(const denoise::AtrousPass& pass, bool both, bool variance) const {
     atrous_pass<1>(pass, both, variance);
   }
@@ -294,13 +306,56 @@ struct CpuPasses {
     compute_depth_slope(depth, w, h, slope);
   }
   void downsample(const denoise::HalfDownsample& p, int half_height) const {
-    p.lights == 2 ? downsample_rows<2>(p, half_height) : downsample_rows<1>(p, half_height);
+    switch (p.moments) {
+      case denoise::BlockMoments::kNone:
+        return downsample_rows<denoise::BlockMoments::kNone>(p, half_height);
+      case denoise::BlockMoments::kOneFrame:
+        return downsample_rows<denoise::BlockMoments::kOneFrame>(p, half_height);
+      case denoise::BlockMoments::kHistory:
+        return downsample_rows<denoise::BlockMoments::kHistory>(p, half_height);
+    }
+  }
+  // The box summed separably: row sums into half_rows, then per row the column sums into a row
+  // buffer and half_box_variance over it.
+  void half_variance(const denoise::HalfVariancePass& p) const {
+    constexpr int r = denoise::kHalfVarianceBox;
+    const size_t w = size_t(p.width);
+    for_rows(p.height, [&](int y) {
+      thread_local std::vector<float> padded;
+      padded.assign(w + 2 * r, 0.0f);
+      const size_t row = size_t(y) * w;
+      for (int k = 0; k < 5; ++k) {
+        std::copy_n(p.moments[k] + row, w, padded.data() + r);
+        padded_row_sums<r>(padded.data(), p.width, half_rows[k] + row);
+      }
+    });
+    const float* rows[5];
+    for (int k = 0; k < 5; ++k) rows[k] = half_rows[k];
+    for_rows(p.height, [&](int y) {
+      const denoise::HalfVariancePass v = p;
+      thread_local std::vector<float> columns;
+      columns.resize(5 * w);
+      column_sums<r>(rows, w, y, p.height, columns.data());
+      const float* c[5];
+      for (int k = 0; k < 5; ++k) c[k] = columns.data() + size_t(k) * w;
+      const size_t row = size_t(y) * w;
+      BOUNCE_IVDEP
+      for (size_t x = 0; x < w; ++x) {
+        const float s[5] = {c[0][x], c[1][x], c[2][x], c[3][x], c[4][x]};
+        denoise::half_box_variance(v, row + x, s);
+      }
+    });
   }
   void upsample(const denoise::HalfUpsample& p) const {
     p.lights == 2 ? upsample_rows<2>(p) : upsample_rows<1>(p);
   }
 
-  template <int kLights>
+  template <denoise::BlockMoments kMoments>
+  static void downsample_rows(const denoise::HalfDownsample& p, int half_height) {
+    p.lights == 2 ? downsample_rows<2, kMoments>(p, half_height)
+                  : downsample_rows<1, kMoments>(p, half_height);
+  }
+  template <int kLights, denoise::BlockMoments kMoments>
   static void downsample_rows(const denoise::HalfDownsample& down, int half_height) {
     const int hw = down.half_width;
     for_rows(half_height, [&](int y) {
@@ -308,8 +363,10 @@ struct CpuPasses {
       // Only the last texel of a row of odd width has a block column outside the image.
       const int interior = p.width % 2 == 0 ? hw : hw - 1;
       BOUNCE_IVDEP
-      for (int x = 0; x < interior; ++x) denoise::downsample_pixel<false, kLights>(p, x, y);
-      for (int x = interior; x < hw; ++x) denoise::downsample_pixel<true, kLights>(p, x, y);
+      for (int x = 0; x < interior; ++x)
+        denoise::downsample_pixel<false, kLights, kMoments>(p, x, y);
+      for (int x = interior; x < hw; ++x)
+        denoise::downsample_pixel<true, kLights, kMoments>(p, x, y);
     });
   }
   // Each texel row the row reads is laid out with every texel twice (and the first and last once
@@ -385,6 +442,8 @@ struct Denoiser::Buffers {
   SurfaceBuffers half_surface;
   std::vector<float> half_slope;
   Planes<8> half_light[3];
+  Planes<10> half_box;         // the spatial variance at half resolution: moments, row sums
+  bool half_variance = false;  // the last run estimated it there (the variance view reads it)
   Planes<6> upsampled;
   std::vector<vec2> motion;
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
@@ -419,6 +478,8 @@ struct Denoiser::Buffers {
     half_surface.resize(half_n);
     half_slope.assign(half_n, 0.0f);
     for (auto& planes : half_light) planes.resize(half_n);
+    half_box.resize(half_n);
+    half_variance = false;
     upsampled.resize(n);
     valid = valid && keep_last;
   }
@@ -433,6 +494,7 @@ struct Denoiser::Buffers {
         h.variance[k][l] = half_light[k][kVarDirect + l];
       }
     for (int l = 0; l < denoise::kHalfMaxLights; ++l) h.upsampled[l] = upsampled.rgb(3 * l);
+    for (int k = 0; k < 5; ++k) h.moments[k] = half_box[k];
     h.width = half_width;
     h.height = half_height;
     return h;
@@ -565,51 +627,57 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
   ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
   const bool spatial = s.spatial && s.atrous_iterations > 0;
+  const denoise::AtrousPlan plan =
+      denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
+  b.half_variance = plan.half_variance;
   if (spatial) {
     ScopedStage stage(frame.times, "denoise/variance");
     // The depth slope the a-trous depth weights are relative to.
     const float* depth = b.surface.geometry[0];
     compute_depth_slope(depth, w, h, b.depth_slope.data());
-    // Box sums for rows within the box's radius of a row with a short history, then the spatial
-    // estimate on those rows.
-    for (int y = 0; y < h; ++y) {
-      bool needed = false;
-      for (int k = std::max(y - denoise::kVarianceBox, 0);
-           k <= std::min(y + denoise::kVarianceBox, h - 1); ++k)
-        needed |= b.row_short[size_t(k)] != 0;
-      b.row_box[size_t(y)] = needed;
+    // (With the plan's half_variance, the half-resolution filter estimates it: filter_half.)
+    if (!plan.half_variance) {
+      // Box sums for rows within the box's radius of a row with a short history, then the spatial
+      // estimate on those rows.
+      for (int y = 0; y < h; ++y) {
+        bool needed = false;
+        for (int k = std::max(y - denoise::kVarianceBox, 0);
+             k <= std::min(y + denoise::kVarianceBox, h - 1); ++k)
+          needed |= b.row_short[size_t(k)] != 0;
+        b.row_box[size_t(y)] = needed;
+      }
+      denoise::BoxPass box;
+      box.history = b.history.data();
+      box.depth = depth;
+      for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
+      box.width = w;
+      for_rows(h, [&](int y) {
+        if (!b.row_box[size_t(y)]) return;
+        box_row(box, y);
+      });
+      denoise::VariancePass variance;
+      variance.depth = depth;
+      variance.length = history_length_.data();
+      for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
+      variance.var_direct = b.variance[0];
+      variance.var_indirect = b.variance[1];
+      variance.width = w;
+      variance.height = h;
+      variance.cap_indirect = cap_indirect;
+      for_rows(h, [&](int y) {
+        if (!b.row_short[size_t(y)]) return;
+        box_column(variance, y);
+      });
     }
-    denoise::BoxPass box;
-    box.history = b.history.data();
-    box.depth = depth;
-    for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
-    box.width = w;
-    for_rows(h, [&](int y) {
-      if (!b.row_box[size_t(y)]) return;
-      box_row(box, y);
-    });
-    denoise::VariancePass variance;
-    variance.depth = depth;
-    variance.length = history_length_.data();
-    for (int k = 0; k < 5; ++k) variance.sums[k] = b.box[k];
-    variance.var_direct = b.variance[0];
-    variance.var_indirect = b.variance[1];
-    variance.width = w;
-    variance.height = h;
-    variance.cap_indirect = cap_indirect;
-    for_rows(h, [&](int y) {
-      if (!b.row_short[size_t(y)]) return;
-      box_column(variance, y);
-    });
   }
   // The a-trous passes: at full resolution direct light (with indirect light when both share the
   // passes), then indirect light alone; at half resolution the lights the plan puts there.
   const denoise::AtrousPass base =
       denoise::atrous_base(s, b.surface.view(), b.depth_slope.data(), light_d, b.variance[0],
                            light_i, b.variance[1], w, h);
-  const denoise::AtrousPlan plan =
-      denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
-  const CpuPasses passes;
+  float* half_rows[5];
+  for (int k = 0; k < 5; ++k) half_rows[k] = b.half_box[5 + k];
+  const CpuPasses passes{half_rows};
   const bool both = plan.both;
   if (spatial && !plan.direct_half) {
     ScopedStage stage(frame.times, "denoise/atrous");
@@ -628,7 +696,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   if (plan.direct_half || plan.half) {
     // (Both lights at half resolution count as the direct stage, as both at full resolution do.)
     ScopedStage stage(frame.times, plan.direct_half ? "denoise/atrous" : "denoise/indirect");
-    denoise::filter_half(passes, base, plan, b.half_planes(), light_d, light_i);
+    const denoise::HalfVarianceInputs variance{b.history.data(), history_length_.data(),
+                                               cap_indirect, b.history_frames == 0};
+    denoise::filter_half(passes, base, plan, b.half_planes(), variance, light_d, light_i);
   }
   if (plan.indirect_iterations > 0 && !both && !plan.half) {
     ScopedStage stage(frame.times, "denoise/indirect");
@@ -703,6 +773,16 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       const float* var_d = b.variance[0];
       const float* var_i = b.variance[1];
       const bool has_indirect = b.had_indirect;
+      if (b.half_variance) {
+        // Estimated at half resolution (of the blocks' means): each pixel shows its texel's.
+        const float* half_d = b.half_light[0][kVarDirect];
+        const float* half_i = b.half_light[0][kVarIndirect];
+        parallel_for(n, [&](size_t i) {
+          const size_t t = (i / size_t(w) / 2) * size_t(b.half_width) + (i % size_t(w)) / 2;
+          pixels[i] = vec3(std::sqrt(half_d[t] + (has_indirect ? half_i[t] : 0.0f)));
+        });
+        return;
+      }
       parallel_for(n, [&](size_t i) {
         pixels[i] = vec3(std::sqrt(var_d[i] + (has_indirect ? var_i[i] : 0.0f)));
       });
