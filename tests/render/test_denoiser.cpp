@@ -155,6 +155,31 @@ TEST(Denoiser, HalfResolutionIndirectLightKeepsACreaseSharp) {
   }
 }
 
+// Indirect light stops at geometric edges only (sigma_luminance_indirect 0, the default): on a
+// flat plane it smooths across a step of its own, which a tight luminance stop keeps (the
+// spatial variance around the step is the step's own, a standard deviation of about 0.75).
+TEST(Denoiser, IndirectLightStopsAtLuminanceEdgesOnlyWithASigma) {
+  const GBuffer g = plane(32, 24);
+  const Image light = image_of(32, 24, [](int x, int) { return vec3(x < 16 ? 0.5f : 2.0f); });
+  const Image direct(32, 24, vec3(1.0f));
+  for (float sigma : {0.0f, 0.05f}) {
+    SCOPED_TRACE(sigma);
+    Denoiser d;
+    d.settings().sigma_luminance_indirect = sigma;
+    d.settings().indirect_resolution = 1;
+    const Image out = run(d, g, HistoryState::kReset, direct, &light).indirect;
+    for (int y = 0; y < 24; ++y) {
+      if (sigma == 0.0f) {
+        EXPECT_GT(out.at(15, y).x, 0.6f) << y;
+        EXPECT_LT(out.at(16, y).x, 1.9f) << y;
+      } else {
+        EXPECT_NEAR(out.at(15, y).x, 0.5f, 0.005f) << y;
+        EXPECT_NEAR(out.at(16, y).x, 2.0f, 0.02f) << y;
+      }
+    }
+  }
+}
+
 // Half resolution spreads the same passes twice as far: flat indirect light keeps its mean and
 // loses more of its noise than at full resolution.
 TEST(Denoiser, HalfResolutionIndirectLightReachesFurther) {

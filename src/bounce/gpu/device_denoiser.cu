@@ -55,19 +55,17 @@ void spatial_variance(const denoise::BoxPass& box, const denoise::VariancePass& 
   });
 }
 
-template <bool kIndirect, bool kVariance>
+template <bool kIndirect, bool kVariance, bool kLuminanceDirect, bool kLuminanceIndirect>
 void atrous(const denoise::AtrousPass& pass) {
   const denoise::AtrousPass p = pass;
   launch_2d(p.width, p.height, [=] __device__(int x, int y) {
-    denoise::atrous_pixel<1, kIndirect, kVariance>(p, x, y);
+    denoise::atrous_pixel<1, kIndirect, kVariance, kLuminanceDirect, kLuminanceIndirect>(p, x, y);
   });
 }
 
 void atrous(const denoise::AtrousPass& pass, bool both, bool variance) {
-  if (both)
-    variance ? atrous<true, true>(pass) : atrous<true, false>(pass);
-  else
-    variance ? atrous<false, true>(pass) : atrous<false, false>(pass);
+  denoise::dispatch_atrous(
+      pass, both, variance, [&]<bool... kSwitches>() { atrous<kSwitches...>(pass); });
 }
 
 void downsample(const denoise::HalfDownsample& pass, int half_height) {

@@ -21,6 +21,9 @@ inline constexpr float kLuminanceEpsilon = 1e-6f;
 // centre's variance, prefiltered over 3x3): w = 2^(geometry - luminance), one exponential per
 // light and tap. The variance is filtered along with the squared weights.
 //
+// A light whose sigma is 0 stops at no luminance edge: its taps weigh by geometry alone, and it
+// needs no variance (indirect light by default, DenoiseSettings::sigma_luminance_indirect).
+//
 // It is split in two parts: the geometric exponent of every tap (the same for direct and
 // indirect light), then one part per light that reads it. On the CPU the first writes a row of
 // exponents that the second reads, which keeps each row loop's live values in registers; a GPU
@@ -132,8 +135,10 @@ inline constexpr int kAtrousGeometry = kAtrousTaps<kRadius> + 2;
 // At pixel x: the geometric exponent of every tap (log2 of kernel weight times normal weight
 // times depth weight), to geometry[k * stride] for tap k, and each light's luminance scale
 // log2(e) / (sigma_luminance * standard deviation + epsilon), its variance prefiltered over the
-// 3x3 pixels with a surface, to geometry[(taps + light) * stride] (light 0 direct, 1 indirect).
-template <int kRadius, bool kIndirect, Columns kColumns>
+// 3x3 pixels with a surface, to geometry[(taps + light) * stride] (light 0 direct, 1 indirect),
+// for the lights that stop at luminance edges (kLuminance).
+template <int kRadius, bool kIndirect, Columns kColumns, bool kLuminanceDirect = true,
+          bool kLuminanceIndirect = true>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
                                                      const AtrousRows<kRadius>& rows, int x,
                                                      float* geometry, size_t stride) {
@@ -156,37 +161,45 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
         log2_kernel + mask + normal_log2_weight(cos_pq, p.sigma_normal) -
         std::fabs(p.surface.depth[q] - zp) * (inv_phi_z * inv_distance);
   });
-  float vd = 0.0f, vi = 0.0f, vw = 0.0f;
-  unrolled<9>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
-    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
-    constexpr float hk = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
-    float mask = rows.near_mask[dy + 1];
-    const int qx = tap_column<kColumns>(x, dx, p.width, mask, 0.0f);
-    const ptrdiff_t q = ptrdiff_t(rows.near[dy + 1]) + qx;
-    const float wk = mask * (p.surface.depth[q] > 0.0f ? hk : 0.0f);
-    vw += wk;
-    vd += wk * p.direct.in_var[q];
-    if constexpr (kIndirect) vi += wk * p.indirect.in_var[q];
-  });
-  const float inv_vw = 1.0f / (vw > 0.0f ? vw : 1.0f);
-  constexpr size_t kScales = size_t(kAtrousTaps<kRadius>);
-  geometry[kScales * stride] =
-      kLog2e / (p.sigma_luminance * std::sqrt(vd * inv_vw) + kLuminanceEpsilon);
-  if constexpr (kIndirect)
-    geometry[(kScales + 1) * stride] =
-        kLog2e / (p.sigma_luminance_indirect * std::sqrt(vi * inv_vw) + kLuminanceEpsilon);
+  constexpr bool kScaleIndirect = kIndirect && kLuminanceIndirect;
+  if constexpr (kLuminanceDirect || kScaleIndirect) {
+    float vd = 0.0f, vi = 0.0f, vw = 0.0f;
+    unrolled<9>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+      constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
+      constexpr float hk = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
+      float mask = rows.near_mask[dy + 1];
+      const int qx = tap_column<kColumns>(x, dx, p.width, mask, 0.0f);
+      const ptrdiff_t q = ptrdiff_t(rows.near[dy + 1]) + qx;
+      const float wk = mask * (p.surface.depth[q] > 0.0f ? hk : 0.0f);
+      vw += wk;
+      if constexpr (kLuminanceDirect) vd += wk * p.direct.in_var[q];
+      if constexpr (kScaleIndirect) vi += wk * p.indirect.in_var[q];
+    });
+    const float inv_vw = 1.0f / (vw > 0.0f ? vw : 1.0f);
+    constexpr size_t kScales = size_t(kAtrousTaps<kRadius>);
+    if constexpr (kLuminanceDirect)
+      geometry[kScales * stride] =
+          kLog2e / (p.sigma_luminance * std::sqrt(vd * inv_vw) + kLuminanceEpsilon);
+    if constexpr (kScaleIndirect)
+      geometry[(kScales + 1) * stride] =
+          kLog2e / (p.sigma_luminance_indirect * std::sqrt(vi * inv_vw) + kLuminanceEpsilon);
+  }
 }
 
 // One light's pass at pixel x (light 0 direct, 1 indirect), with what atrous_geometry wrote.
-// Without kVariance (the last pass) the variance is not filtered.
-template <int kRadius, Columns kColumns, bool kVariance>
+// Without kVariance (the last pass, or no kLuminance) the variance is not filtered.
+template <int kRadius, Columns kColumns, bool kVariance, bool kLuminance = true>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light_index,
                                                   const AtrousRows<kRadius>& rows, int x,
                                                   const float* geometry, size_t stride) {
+  static_assert(kLuminance || !kVariance, "a light without luminance stops has no variance");
   const AtrousLight& light = light_index ? p.indirect : p.direct;
   const size_t c = rows.tap[kRadius] + size_t(x);
-  const float inv_phi = geometry[size_t(kAtrousTaps<kRadius> + light_index) * stride];
-  const float lp = luminance_of(light.in.r[c], light.in.g[c], light.in.b[c]);
+  float inv_phi = 0.0f, lp = 0.0f;
+  if constexpr (kLuminance) {
+    inv_phi = geometry[size_t(kAtrousTaps<kRadius> + light_index) * stride];
+    lp = luminance_of(light.in.r[c], light.in.g[c], light.in.b[c]);
+  }
   constexpr float kCentre = atrous_kernel<kRadius>(0) * atrous_kernel<kRadius>(0);
   float sw = kCentre, sr = kCentre * light.in.r[c], sg = kCentre * light.in.g[c],
         sb = kCentre * light.in.b[c], sv = 0.0f;
@@ -197,8 +210,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light
     const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, unused, 0.0f);
     const ptrdiff_t q = ptrdiff_t(rows.tap[Tap::dy + kRadius]) + qx;
     const float r = light.in.r[q], g = light.in.g[q], b = light.in.b[q];
-    const float w = exp2_weight(geometry[size_t(decltype(k)::value) * stride] -
-                                std::fabs(luminance_of(r, g, b) - lp) * inv_phi);
+    float exponent = geometry[size_t(decltype(k)::value) * stride];
+    if constexpr (kLuminance) exponent -= std::fabs(luminance_of(r, g, b) - lp) * inv_phi;
+    const float w = exp2_weight(exponent);
     sw += w;
     sr += w * r;
     sg += w * g;
@@ -212,15 +226,41 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light
   if constexpr (kVariance) light.out_var[c] = sv * inv * inv;
 }
 
-// The whole pass at pixel (x, y), for a launcher that runs one thread per pixel.
-template <int kRadius, bool kIndirect, bool kVariance>
+// The whole pass at pixel (x, y), for a launcher that runs one thread per pixel. kVariance
+// applies to the lights with kLuminance.
+template <int kRadius, bool kIndirect, bool kVariance, bool kLuminanceDirect = true,
+          bool kLuminanceIndirect = true>
 BOUNCE_HD inline void atrous_pixel(const AtrousPass& p, int x, int y) {
   const AtrousRows<kRadius> rows = atrous_rows<kRadius>(p, y);
   float geometry[kAtrousGeometry<kRadius>];
   constexpr Columns kClamped = Columns::kClamped;
-  atrous_geometry<kRadius, kIndirect, kClamped>(p, rows, x, geometry, 1);
-  atrous_light<kRadius, kClamped, kVariance>(p, 0, rows, x, geometry, 1);
-  if constexpr (kIndirect) atrous_light<kRadius, kClamped, kVariance>(p, 1, rows, x, geometry, 1);
+  atrous_geometry<kRadius, kIndirect, kClamped, kLuminanceDirect, kLuminanceIndirect>(p, rows, x,
+                                                                                      geometry, 1);
+  atrous_light<kRadius, kClamped, kVariance && kLuminanceDirect, kLuminanceDirect>(p, 0, rows, x,
+                                                                                   geometry, 1);
+  if constexpr (kIndirect)
+    atrous_light<kRadius, kClamped, kVariance && kLuminanceIndirect, kLuminanceIndirect>(
+        p, 1, rows, x, geometry, 1);
+}
+
+// Runs `launch.template operator()<kIndirect, kVariance, kLuminanceDirect,
+// kLuminanceIndirect>()`, the backend's pass with those switches, for a pass over the direct
+// slot (`both`: and the indirect slot) that filters variance where asked (`variance`), the
+// lights' luminance stops following their sigmas. (In a pass over both slots, direct light
+// stops at luminance edges: its sigma is positive.)
+template <typename Launch>
+void dispatch_atrous(const AtrousPass& pass, bool both, bool variance, const Launch& launch) {
+  const bool luminance = pass.sigma_luminance > 0.0f;
+  if (!both) {
+    if (!luminance) return launch.template operator()<false, false, false, true>();
+    return variance ? launch.template operator()<false, true, true, true>()
+                    : launch.template operator()<false, false, true, true>();
+  }
+  if (pass.sigma_luminance_indirect > 0.0f)
+    return variance ? launch.template operator()<true, true, true, true>()
+                    : launch.template operator()<true, false, true, true>();
+  return variance ? launch.template operator()<true, true, true, false>()
+                  : launch.template operator()<true, false, true, false>();
 }
 
 }  // namespace bounce::denoise

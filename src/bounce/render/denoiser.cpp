@@ -147,7 +147,8 @@ void remodulate_pass(const denoise::RemodulatePass& pass, int height, int width)
 
 // One a-trous pass, row by row: the taps' geometric exponents and the lights' luminance scales
 // into a row buffer, then each light's filter reading them.
-template <int kRadius, bool kIndirect, bool kVariance>
+template <int kRadius, bool kIndirect, bool kVariance, bool kLuminanceDirect,
+          bool kLuminanceIndirect>
 void atrous_pass(const denoise::AtrousPass& pass) {
   for_rows(pass.height, [&](int y) {
     const denoise::AtrousPass p = pass;
@@ -162,32 +163,29 @@ void atrous_pass(const denoise::AtrousPass& pass) {
     row_loop(
         p.width, border,
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_geometry<kRadius, kIndirect, kMasked>(p, rows, x, geometry + x, stride);
+          denoise::atrous_geometry<kRadius, kIndirect, kMasked, kLuminanceDirect,
+                                   kLuminanceIndirect>(p, rows, x, geometry + x, stride);
         },
         [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-          denoise::atrous_geometry<kRadius, kIndirect, kInside>(p, rows, x, geometry + x, stride);
+          denoise::atrous_geometry<kRadius, kIndirect, kInside, kLuminanceDirect,
+                                   kLuminanceIndirect>(p, rows, x, geometry + x, stride);
         });
-    for (int light = 0; light < (kIndirect ? 2 : 1); ++light) {
+    auto light = [&]<bool kLuminance>(int index) {
+      constexpr bool kFiltered = kVariance && kLuminance;
       row_loop(
           p.width, border,
           [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::atrous_light<kRadius, kMasked, kVariance>(p, light, rows, x, geometry + x,
-                                                               stride);
+            denoise::atrous_light<kRadius, kMasked, kFiltered, kLuminance>(p, index, rows, x,
+                                                                           geometry + x, stride);
           },
           [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
-            denoise::atrous_light<kRadius, kInside, kVariance>(p, light, rows, x, geometry + x,
-                                                               stride);
+            denoise::atrous_light<kRadius, kInside, kFiltered, kLuminance>(p, index, rows, x,
+                                                                           geometry + x, stride);
           });
-    }
+    };
+    light.template operator()<kLuminanceDirect>(0);
+    if constexpr (kIndirect) light.template operator()<kLuminanceIndirect>(1);
   });
-}
-
-template <int kRadius>
-void atrous_pass(const denoise::AtrousPass& pass, bool indirect, bool variance) {
-  if (indirect)
-    variance ? atrous_pass<kRadius, true, true>(pass) : atrous_pass<kRadius, true, false>(pass);
-  else
-    variance ? atrous_pass<kRadius, false, true>(pass) : atrous_pass<kRadius, false, false>(pass);
 }
 
 // The depth slope of every pixel (denoise_variance.h) of a w x h depth plane.
@@ -300,7 +298,8 @@ struct CpuPasses {
   float* const* half_rows;  // 5 half-resolution planes: half_variance's row sums
 
   void atrous(const denoise::AtrousPass& pass, bool both, bool variance) const {
-    atrous_pass<1>(pass, both, variance);
+    denoise::dispatch_atrous(
+        pass, both, variance, [&]<bool... kSwitches>() { atrous_pass<1, kSwitches...>(pass); });
   }
   void depth_slope(const float* depth, int w, int h, float* slope) const {
     compute_depth_slope(depth, w, h, slope);
@@ -523,8 +522,9 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
                   "indirect light is filtered at 1/N of the width and height (1 or 2)");
   params_.add_float("sigma_luminance", &s.sigma_luminance, 0.01, 1000.0,
                     "luminance edge-stopping, in standard deviations of the estimate");
-  params_.add_float("sigma_luminance_indirect", &s.sigma_luminance_indirect, 0.01, 1e6,
-                    "the same for indirect light (photon blotches are wide: large)");
+  params_.add_float("sigma_luminance_indirect", &s.sigma_luminance_indirect, 0.0, 1e6,
+                    "the same for indirect light; 0: none, by geometry alone (photon blotches "
+                    "are wide)");
   params_.add_float("sigma_normal", &s.sigma_normal, 1.0, 1024.0,
                     "normal edge-stopping exponent on the cosine between normals");
   params_.add_float("sigma_depth", &s.sigma_depth, 0.01, 1000.0,

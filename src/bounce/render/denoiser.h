@@ -53,10 +53,11 @@ struct DenoiseSettings {
   // upsampled guided by depth and normals (render/denoise_half.h).
   int indirect_resolution = 2;
   float sigma_luminance = 4.0f;  // luminance edge-stopping, in standard deviations
-  // The same for indirect light. Photon gathers leave blotches as wide as the gather radius,
-  // which a neighbourhood's variance cannot tell from signal: indirect light is filtered by
-  // geometry almost alone.
-  float sigma_luminance_indirect = 1.0e5f;
+  // The same for indirect light; 0: none. Photon gathers leave blotches as wide as the gather
+  // radius, which a neighbourhood's variance cannot tell from signal: indirect light is filtered
+  // by geometry alone, which also spares its variance (measured on the Cornell box's first
+  // frame: MSE8 34.55 at 1e3, 33.18 at 1e5, 33.17 at 1e6 and without).
+  float sigma_luminance_indirect = 0.0f;
   float sigma_normal = 128.0f;    // normal edge-stopping exponent
   float sigma_depth = 1.0f;       // depth edge-stopping, relative to the local depth gradient
   int history_max = 32;           // frames of history a pixel keeps while anything moves
