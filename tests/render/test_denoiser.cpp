@@ -977,7 +977,9 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
   Image view;
   EXPECT_THROW(d.debug_view(DenoiseView::kRaw, view), Error);  // nothing kept yet
   run(d, g, HistoryState::kReset, first);
+  EXPECT_THROW(d.debug_view(DenoiseView::kMotion, view), Error);  // not kept
   d.keep_raw(true);
+  d.keep_motion(true);
   for (size_t i = 0; i < g.size(); ++i) g.motion[i] = vec2(i % 8 < 4 ? 0.0f : 1.0f, -2.0f);
   const Image second = noisy(8, 8, rng, 0.5f, [](int, int) { return 1.0f; });
   const Image indirect = noisy(8, 8, rng, 0.5f, [](int, int) { return 0.5f; });
@@ -999,7 +1001,7 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
     expect_near_rel(view.pixels()[i], out.direct.pixels()[i] + out.indirect.pixels()[i], 1e-5f,
                     "denoised view");
 
-  // Without keep_raw the copies are gone; the views the denoiser keeps anyway remain.
+  // Without keep_raw the copies are gone; the motion is this run's while kept.
   d.keep_raw(false);
   for (vec2& m : g.motion) m = vec2(-4.0f, 8.0f);
   run(d, g, HistoryState::kCameraMoved, second, &indirect);
@@ -1007,6 +1009,9 @@ TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {
   EXPECT_THROW(d.debug_view(DenoiseView::kDenoised, view), Error);
   d.debug_view(DenoiseView::kMotion, view);
   EXPECT_EQ(view.at(2, 2), vec3(0.25f, 1.0f, 0.0f));
+  d.keep_motion(false);
+  run(d, g, HistoryState::kCameraMoved, second, &indirect);
+  EXPECT_THROW(d.debug_view(DenoiseView::kMotion, view), Error);
 }
 
 TEST(Denoiser, RecordsItsSubStages) {

@@ -163,7 +163,6 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
     b->fill_zero();
   }
   row_short_.resize(size_t(h));
-  motion_.resize(n);
   half_width_ = (w + 1) / 2;
   half_height_ = (h + 1) / 2;
   const size_t half_n = size_t(half_width_) * size_t(half_height_);
@@ -240,7 +239,6 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.var_direct = var_direct_.data();
     temporal.var_indirect = var_indirect_.data();
     temporal.length = length_.data();
-    temporal.motion = motion_.data();
     temporal.width = w;
     temporal.height = h;
     temporal.prev_width = prev_width;

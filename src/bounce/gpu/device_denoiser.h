@@ -52,7 +52,6 @@ class DeviceDenoiser {
   DeviceBuffer<float> box_[5];
   DeviceBuffer<float> depth_slope_, var_direct_, var_indirect_;
   DeviceBuffer<uint32_t> row_short_;
-  DeviceBuffer<vec2> motion_;
   // a-trous ping-pong: direct rgb and variance, indirect rgb and variance
   Rgb filter_direct_[2], filter_indirect_[2];
   DeviceBuffer<float> filter_var_direct_[2], filter_var_indirect_[2];

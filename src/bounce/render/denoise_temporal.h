@@ -41,8 +41,7 @@ struct TemporalPass {
   float* var_direct = nullptr;
   float* var_indirect = nullptr;
   float* length = nullptr;
-  RestPlanes rest;         // updated in place at rest and after a reset
-  vec2* motion = nullptr;  // a copy of the G-buffer's motion, for the debug view
+  RestPlanes rest;  // updated in place at rest and after a reset
   int width = 0;
   int height = 0;
   // The size of the previous frame's planes (prev_*): the viewer's resolution scaler changes
@@ -209,9 +208,6 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const*
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                     const Reprojected& r) {
-  const vec2 motion = p.g.motion[i];
-  p.motion[i].x = motion.x;  // (component by component: a struct copy would not vectorise)
-  p.motion[i].y = motion.y;
   const bool hit = p.g.hit(i);
   const vec3 normal = p.g.normal[i];
   const float depth = p.g.depth[i];

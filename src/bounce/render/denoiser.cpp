@@ -444,7 +444,7 @@ struct Denoiser::Buffers {
   Planes<10> half_box;         // the spatial variance at half resolution: moments, row sums
   bool half_variance = false;  // the last run estimated it there (the variance view reads it)
   Planes<6> upsampled;
-  std::vector<vec2> motion;
+  std::vector<vec2> motion;                  // kept for the debug view
   Image raw_direct, raw_indirect, denoised;  // kept for the debug views
 
   // Sizes every plane for w x h. With `keep_last`, the last run's surfaces and history (surface,
@@ -468,7 +468,6 @@ struct Denoiser::Buffers {
     row_short.assign(size_t(h), 0);
     row_box.assign(size_t(h), 0);
     variance.resize(n);
-    motion.assign(n, vec2(0.0f));
     filter[0].resize(n);
     filter[1].resize(n);
     half_width = (w + 1) / 2;
@@ -573,9 +572,13 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   if (!b.valid || b.had_indirect != has_indirect) state = HistoryState::kReset;
   b.valid = true;
   b.had_indirect = has_indirect;
-  // Copies of this frame's input for the raw view, dropped when not asked for.
+  // Copies of this frame's input for the raw and motion views, dropped when not asked for.
   b.raw_direct = keep_raw_ ? direct : Image();
   b.raw_indirect = keep_raw_ && indirect ? *indirect : Image();
+  if (keep_motion_)
+    b.motion.assign(gbuffer.motion.begin(), gbuffer.motion.end());
+  else
+    b.motion.clear();
   // Last run's "next" is this run's "previous".
   std::swap(b.surface, b.prev_surface);
   std::swap(b.history, b.prev_history);
@@ -602,7 +605,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.var_direct = b.variance[0];
     temporal.var_indirect = b.variance[1];
     temporal.length = history_length_.data();
-    temporal.motion = b.motion.data();
     temporal.width = w;
     temporal.height = h;
     temporal.prev_width = prev_width;
@@ -763,6 +765,8 @@ void Denoiser::debug_view(DenoiseView view, Image& out) const {
       return;
     }
     case DenoiseView::kMotion:
+      if (b.motion.empty())
+        fail("denoiser: the motion view needs keep_motion(true) before the run");
       parallel_for(n, [&](size_t i) {
         const vec2 m = glm::clamp(0.5f + b.motion[i] / (2.0f * kMotionViewRange), 0.0f, 1.0f);
         pixels[i] = vec3(m.x, m.y, 0.0f);

@@ -125,9 +125,11 @@ class Denoiser {
   void run(const DenoiseFrame& frame, Image& direct, Image* indirect);
 
   // Writes a debug view of the last run into `out` (sized to match). kRaw and kDenoised need
-  // keep_raw(true) before the run (it keeps copies of the run's input and output).
+  // keep_raw(true) before the run (it keeps copies of the run's input and output), kMotion
+  // keep_motion(true) (a copy of the G-buffer's motion).
   void debug_view(DenoiseView view, Image& out) const;
   void keep_raw(bool keep) { keep_raw_ = keep; }
+  void keep_motion(bool keep) { keep_motion_ = keep; }
   // Per pixel history length of the last run (frames), for tests and the debug view.
   const std::vector<float>& history_length() const { return history_length_; }
 
@@ -135,6 +137,7 @@ class Denoiser {
   DenoiseSettings settings_;
   ParamSet params_;
   bool keep_raw_ = false;
+  bool keep_motion_ = false;
   std::vector<float> history_length_;
   // History colour and moments per channel, previous depth, normal and object id, ping-pong
   // filter planes, raw copies (denoiser.cpp).

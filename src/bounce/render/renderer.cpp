@@ -196,6 +196,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   if (settings.denoise) {
     ScopedStage stage(f.times, "denoise");
     denoiser_.keep_raw(settings.view == DenoiseView::kRaw);
+    denoiser_.keep_motion(settings.view == DenoiseView::kMotion);
     const DenoiseFrame frame{f.gbuffer, history,
                              technique_->indirect_history() == IndirectHistory::kAccumulated,
                              f.times};
