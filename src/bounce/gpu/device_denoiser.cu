@@ -301,6 +301,11 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
+  denoise::RemodulatePass remodulate{
+      g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},
+      light_d, light_i,
+      direct,  indirect};
+  bool remodulated = false;
   if (plan.direct_half || plan.half) {
     denoise::HalfPlanes half;
     half.surface = half_surface_.view();
@@ -316,7 +321,8 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     half.height = half_height_;
     const denoise::HalfVarianceInputs variance{history_.data(), length_.data(), cap_indirect,
                                                history_frames_ == 0};
-    denoise::filter_half(passes, base, plan, half, variance, light_d, light_i);
+    remodulated = denoise::filter_half(passes, base, plan, half, variance, remodulate, rest,
+                                       light_d, light_i);
   }
   if (plan.indirect_iterations > 0 && !both && !plan.half) {
     denoise::AtrousPass indirect_base = base;
@@ -331,10 +337,9 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     light_i = denoise::run_atrous(passes, indirect_base, false, 0, iterations, iterations, outputs)
                   .direct.in;
   }
-  const denoise::RemodulatePass remodulate{
-      g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},
-      light_d, light_i,
-      direct,  indirect};
+  if (remodulated) return;
+  remodulate.direct = light_d;
+  remodulate.indirect = light_i;
   if (has_indirect)
     rest ? device_denoise::remodulate<true, true>(remodulate, n)
          : device_denoise::remodulate<true, false>(remodulate, n);

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "bounce/render/denoise_atrous.h"
 #include "bounce/render/denoise_kernels.h"
@@ -173,6 +174,31 @@ struct HalfUpsample {
   int half_height = 0;
   float sigma_depth = 0.0f;
   RgbPlanes out[kHalfMaxLights];  // full resolution
+  // With `remodulated` (every light is filtered here: direct, and indirect if any), the result
+  // goes straight through remodulate_light into the output images instead of `out`; `rest`:
+  // remodulate_pixel's kRest.
+  bool remodulated = false;
+  bool rest = false;
+  RemodulatePass remodulate;
+};
+
+// Where upsample_from puts pixel i's upsampled lights: `out`, or remodulated.
+template <int kCount>
+struct UpsampleToPlanes {
+  static constexpr int kLights = kCount;
+  const HalfUpsample& p;
+  BOUNCE_HD BOUNCE_DENOISE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
+    for (int l = 0; l < kLights; ++l) p.out[l].set(i, light[l]);
+  }
+};
+template <int kCount, bool kRest>
+struct UpsampleRemodulated {
+  static constexpr int kLights = kCount;
+  const HalfUpsample& p;
+  BOUNCE_HD BOUNCE_DENOISE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
+    remodulate_light<kLights == 2, kRest>(p.remodulate, i, light[0],
+                                          kLights == 2 ? light[kLights - 1] : vec3(0.0f));
+  }
 };
 
 // The two texel rows a full-resolution row y reads, and their bilinear weights.
@@ -210,11 +236,12 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void half_channels(const HalfUpsample& p,
 
 // Full-resolution pixel x of row y (rows from half_upsample_rows), for the first kLights lights.
 // texel(dx, dy) gives the planes (half_channels' order) and index of texel column hx0 + dx in
-// texel row dy, hx0 as below: the launcher decides how texels are laid out.
-template <int kLights, typename Texel>
+// texel row dy, hx0 as below: the launcher decides how texels are laid out. store(i, light)
+// puts the result (UpsampleToPlanes, UpsampleRemodulated).
+template <int kLights, typename Texel, typename Store>
 BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
                                                    const HalfUpsampleRows& rows, int x, int y,
-                                                   const Texel& texel) {
+                                                   const Texel& texel, const Store& store) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
   const float z = p.surface.depth[i];
   const float nx = p.surface.nx[i], ny = p.surface.ny[i], nz = p.surface.nz[i];
@@ -250,36 +277,51 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
   });
   const bool represented = (z > 0.0f) & (wsum > kHalfMinWeight);
   const float inv = 1.0f / (represented ? wsum : 1.0f);
+  vec3 light[kLights];
   unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
     constexpr int kL = decltype(l)::value;
-    p.out[kL].r[i] = represented ? r[kL] * inv : p.light[kL].r[i];
-    p.out[kL].g[i] = represented ? g[kL] * inv : p.light[kL].g[i];
-    p.out[kL].b[i] = represented ? b[kL] * inv : p.light[kL].b[i];
+    light[kL] = vec3(represented ? r[kL] * inv : p.light[kL].r[i],
+                     represented ? g[kL] * inv : p.light[kL].g[i],
+                     represented ? b[kL] * inv : p.light[kL].b[i]);
   });
+  store(i, light);
 }
 
 // upsample_from reading the half image's planes in place, texel columns clamped to the image.
-template <int kLights>
+template <int kLights, typename Store>
 BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, const HalfUpsampleRows& rows, int x,
-                                     int y) {
+                                     int y, const Store& store) {
   const float* c[kHalfChannels<kLights>];
   half_channels<kLights>(p, c);
   const int hx0 = (x >> 1) - 1 + (x & 1);
-  upsample_from<kLights>(p, rows, x, y,
-                         [&](int dx, int dy, const float* const*& planes, size_t& h) {
-                           int hx = hx0 + dx;
-                           hx = hx < 0 ? 0 : (hx >= p.half_width ? p.half_width - 1 : hx);
-                           planes = c;
-                           h = rows.row[dy] + size_t(hx);
-                         });
+  upsample_from<kLights>(
+      p, rows, x, y,
+      [&](int dx, int dy, const float* const*& planes, size_t& h) {
+        int hx = hx0 + dx;
+        hx = hx < 0 ? 0 : (hx >= p.half_width ? p.half_width - 1 : hx);
+        planes = c;
+        h = rows.row[dy] + size_t(hx);
+      },
+      store);
+}
+
+// Calls f(store) with the store `p` asks for: f is templated on the lights and the store.
+template <typename F>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void with_upsample_store(const HalfUpsample& p, const F& f) {
+  if (p.lights == 2) {
+    if (!p.remodulated) return f(UpsampleToPlanes<2>{p});
+    return p.rest ? f(UpsampleRemodulated<2, true>{p}) : f(UpsampleRemodulated<2, false>{p});
+  }
+  if (!p.remodulated) return f(UpsampleToPlanes<1>{p});
+  return p.rest ? f(UpsampleRemodulated<1, true>{p}) : f(UpsampleRemodulated<1, false>{p});
 }
 
 // The whole upsample at pixel (x, y), for a launcher that runs one thread per pixel.
 BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, int x, int y) {
-  if (p.lights == 2)
-    upsample_pixel<2>(p, half_upsample_rows(p, y), x, y);
-  else
-    upsample_pixel<1>(p, half_upsample_rows(p, y), x, y);
+  with_upsample_store(p, [&](const auto& store) {
+    using Store = std::decay_t<decltype(store)>;
+    upsample_pixel<Store::kLights>(p, half_upsample_rows(p, y), x, y, store);
+  });
 }
 
 }  // namespace bounce::denoise

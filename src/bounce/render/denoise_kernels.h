@@ -201,18 +201,25 @@ struct RemodulatePass {
   vec3* out_indirect = nullptr;  // null without indirect light
 };
 
-// Multiplies the filtered light back by its albedo and adds the emission (at rest, kRest: the
-// averages); in motion, pixels without a surface keep what the techniques wrote. Branch-free,
-// so the CPU's loop vectorises.
+// Multiplies pixel i's filtered light back by its albedo and adds the emission (at rest, kRest:
+// the averages); in motion, pixels without a surface keep what the techniques wrote.
+// Branch-free, so the CPU's loop vectorises.
 template <bool kIndirect, bool kRest>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
+BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_light(const RemodulatePass& p, size_t i,
+                                                      vec3 direct, vec3 indirect) {
   // At rest every pixel holds an average, those without a surface this frame too.
   const bool averaged = p.g.hit(i) | kRest;
   const vec3 f = kRest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
   const vec3 e = kRest ? p.rest.emission.get(i) : p.g.emission[i];
-  p.out_direct[i] = pick(averaged, p.direct.get(i) * f + e, p.out_direct[i]);
-  if constexpr (kIndirect)
-    p.out_indirect[i] = pick(averaged, p.indirect.get(i) * f, p.out_indirect[i]);
+  p.out_direct[i] = pick(averaged, direct * f + e, p.out_direct[i]);
+  if constexpr (kIndirect) p.out_indirect[i] = pick(averaged, indirect * f, p.out_indirect[i]);
+}
+
+// The same with the filtered light from p's planes.
+template <bool kIndirect, bool kRest>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
+  remodulate_light<kIndirect, kRest>(p, i, p.direct.get(i),
+                                     kIndirect ? p.indirect.get(i) : vec3(0.0f));
 }
 
 }  // namespace bounce::denoise

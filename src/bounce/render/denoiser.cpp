@@ -346,7 +346,7 @@ struct CpuPasses {
     });
   }
   void upsample(const denoise::HalfUpsample& p) const {
-    p.lights == 2 ? upsample_rows<2>(p) : upsample_rows<1>(p);
+    denoise::with_upsample_store(p, [&](const auto& store) { upsample_rows(p, store); });
   }
 
   template <denoise::BlockMoments kMoments>
@@ -372,11 +372,13 @@ struct CpuPasses {
   // more at the ends, where texel columns are clamped): pixel x's texel columns hx0 and hx0 + 1
   // are then entries x and x + 2, so the pixel loop reads consecutive entries and vectorises
   // (read in place, texel columns step by half a texel per pixel).
-  template <int kLights>
-  static void upsample_rows(const denoise::HalfUpsample& up) {
+  template <typename Store>
+  static void upsample_rows(const denoise::HalfUpsample& up, const Store&) {
+    constexpr int kLights = Store::kLights;
     constexpr int kChannels = denoise::kHalfChannels<kLights>;
     for_rows(up.height, [&](int y) {
       const denoise::HalfUpsample p = up;
+      const Store store{p};
       const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(p, y);
       const int hw = p.half_width;
       const size_t n = 2 * size_t(hw) + 2;
@@ -407,7 +409,8 @@ struct CpuPasses {
             [&](int dx, int dy, const float* const*& c, size_t& h) BOUNCE_DENOISE_LAMBDA_INLINE {
               c = dy ? row1 : row0;
               h = size_t(x + 2 * dx);  // entry x - 1 or x + 1 of the texels from d + 1
-            });
+            },
+            store);
     });
   }
 };
@@ -695,12 +698,20 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     light_d = result.direct.in;
     if (both) light_i = result.indirect.in;
   }
+  // Remodulation, of the filtered light wherever it ends up.
+  denoise::RemodulatePass remodulate{
+      gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
+      light_d,        light_i,
+      direct.data(),  indirect ? indirect->data() : nullptr};
+  bool remodulated = false;
   if (plan.direct_half || plan.half) {
-    // (Both lights at half resolution count as the direct stage, as both at full resolution do.)
+    // (Both lights at half resolution count as the direct stage, as both at full resolution do;
+    // with every light there the upsample remodulates.)
     ScopedStage stage(frame.times, plan.direct_half ? "denoise/atrous" : "denoise/indirect");
     const denoise::HalfVarianceInputs variance{b.history.data(), history_length_.data(),
                                                cap_indirect, b.history_frames == 0};
-    denoise::filter_half(passes, base, plan, b.half_planes(), variance, light_d, light_i);
+    remodulated = denoise::filter_half(passes, base, plan, b.half_planes(), variance, remodulate,
+                                       rest, light_d, light_i);
   }
   if (plan.indirect_iterations > 0 && !both && !plan.half) {
     ScopedStage stage(frame.times, "denoise/indirect");
@@ -717,12 +728,10 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     const int n = plan.indirect_iterations;
     light_i = denoise::run_atrous(passes, indirect_base, false, 0, n, n, outputs).direct.in;
   }
-  {
+  if (!remodulated) {
     ScopedStage stage(frame.times, "denoise/remodulate");
-    const denoise::RemodulatePass remodulate{
-        gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
-        light_d,        light_i,
-        direct.data(),  indirect ? indirect->data() : nullptr};
+    remodulate.direct = light_d;
+    remodulate.indirect = light_i;
     if (has_indirect)
       rest ? remodulate_pass<true, true>(remodulate, h, w)
            : remodulate_pass<true, false>(remodulate, h, w);
