@@ -308,7 +308,12 @@ TEST(Denoiser, ResetBlockMomentsFromTheLightEqualTheHistorys) {
   Pcg32 rng(5);
   std::vector<float> depth(w * h), nx(w * h, 0.0f), ny(w * h, 0.0f), nz(w * h, -1.0f);
   std::vector<float> light[2][3];
-  std::vector<denoise::HistoryTexel> history(w * h);
+  std::vector<float> history_planes[8];
+  denoise::HistoryPlanes history;
+  for (int k = 0; k < 8; ++k) {
+    history_planes[k].resize(w * h);
+    history.c[k] = history_planes[k].data();
+  }
   for (auto& l : light)
     for (auto& c : l) c.resize(w * h);
   for (int i = 0; i < w * h; ++i) {
@@ -319,8 +324,7 @@ TEST(Denoiser, ResetBlockMomentsFromTheLightEqualTheHistorys) {
       for (int k = 0; k < 3; ++k) light[l][k][i] = c[l][k];
     }
     const float ld = denoise::luminance_of(c[0]), li = denoise::luminance_of(c[1]);
-    history[i].direct = vec4(c[0], ld * ld);
-    history[i].indirect = vec4(c[1], li * li);
+    history.set(size_t(i), {vec4(c[0], ld * ld), vec4(c[1], li * li)});
   }
   const std::vector<float> length(w * h, 0.0f);
   // Per mode: depth, normal, each light's rgb and variance, the five moment sums.
@@ -342,7 +346,7 @@ TEST(Denoiser, ResetBlockMomentsFromTheLightEqualTheHistorys) {
                       out[mode][3].data(), nullptr};
     p.half_width = hw;
     p.moments = mode == 0 ? denoise::BlockMoments::kOneFrame : denoise::BlockMoments::kHistory;
-    p.history = mode == 0 ? nullptr : history.data();
+    p.history = mode == 0 ? denoise::ConstHistoryPlanes{} : denoise::ConstHistoryPlanes(history);
     p.length = mode == 0 ? nullptr : length.data();
     p.cap_indirect = 3.0f;
     for (int k = 0; k < 5; ++k) p.half_moments[k] = out[mode][12 + k].data();

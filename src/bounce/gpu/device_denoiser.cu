@@ -134,6 +134,20 @@ denoise::RgbPlanes DeviceDenoiser::Rgb::view() {
   return {r.data(), g.data(), b.data()};
 }
 
+void DeviceDenoiser::History::resize(size_t n) {
+  for (auto& p : c) p.resize(n);
+}
+
+void DeviceDenoiser::History::fill_zero() {
+  for (auto& p : c) p.fill_zero();
+}
+
+denoise::HistoryPlanes DeviceDenoiser::History::view() {
+  denoise::HistoryPlanes h;
+  for (int k = 0; k < 8; ++k) h.c[k] = c[k].data();
+  return h;
+}
+
 // As Denoiser's Buffers::resize: with keep_last the last run's surfaces, history and lengths
 // keep their old size, to be reprojected across the size change.
 void DeviceDenoiser::resize(int w, int h, bool keep_last) {
@@ -230,9 +244,9 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.direct = direct;
     temporal.indirect = indirect;
     temporal.prev_surface = ConstSurfacePlanes(prev_surface_.view());
-    temporal.prev = prev_history_.data();
+    temporal.prev = prev_history_.view();
     temporal.prev_length = prev_length_.data();
-    temporal.next = history_.data();
+    temporal.next = history_.view();
     temporal.surface = surface_.view();
     temporal.light_direct = light_direct_.view();
     temporal.light_indirect = light_indirect_.view();
@@ -268,7 +282,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   // (With the plan's half_variance, the half-resolution filter estimates it: filter_half.)
   if (spatial && !plan.half_variance) {
     denoise::BoxPass box;
-    box.history = history_.data();
+    box.history = history_.view();
     box.depth = depth;
     for (int k = 0; k < 5; ++k) box.sums[k] = box_[k].data();
     box.width = w;
@@ -319,7 +333,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     for (int k = 0; k < 5; ++k) half.moments[k] = half_moments_[k].data();
     half.width = half_width_;
     half.height = half_height_;
-    const denoise::HalfVarianceInputs variance{history_.data(), length_.data(), cap_indirect,
+    const denoise::HalfVarianceInputs variance{history_.view(), length_.data(), cap_indirect,
                                                history_frames_ == 0};
     remodulated = denoise::filter_half(passes, base, plan, half, variance, remodulate, rest,
                                        light_d, light_i);

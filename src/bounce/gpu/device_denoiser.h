@@ -39,6 +39,12 @@ class DeviceDenoiser {
     void resize(size_t n);
     denoise::RgbPlanes view();
   };
+  struct History {  // denoise::HistoryPlanes
+    DeviceBuffer<float> c[8];
+    void resize(size_t n);
+    void fill_zero();
+    denoise::HistoryPlanes view();
+  };
   void resize(int w, int h, bool keep_last);
 
   int width_ = 0, height_ = 0;
@@ -46,7 +52,7 @@ class DeviceDenoiser {
   int rest_frames_ = 0;  // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
   int history_frames_ = 0;  // frames since the last reset (Buffers::history_frames)
   Surface surface_, prev_surface_, half_surface_;
-  DeviceBuffer<denoise::HistoryTexel> history_, prev_history_;
+  History history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;
   Rgb rest_factor_, rest_emission_, light_direct_, light_indirect_;
   DeviceBuffer<float> box_[5];

@@ -55,7 +55,7 @@ struct HalfDownsample {
   // half_moments, and half_variance receives the scale half_box_variance multiplies the box's
   // variance by, instead of the variance of the full-resolution estimates (`variance` unread).
   BlockMoments moments = BlockMoments::kNone;
-  const HistoryTexel* history = nullptr;  // kHistory: the accumulation, with its moments
+  ConstHistoryPlanes history;             // kHistory: the accumulation, with its moments
   const float* length = nullptr;          // kHistory: history length per pixel
   float cap_indirect = 0.0f;
   float* half_moments[5] = {};
@@ -96,7 +96,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     float pixel_var[kHalfMaxLights] = {};
     if constexpr (kMoments == BlockMoments::kHistory) {
       float m[5];
-      box_moments(p.history[q], z, m);
+      box_moments(p.history.get(q), z, m);
       for (int c = 0; c < 5; ++c) moments[c] += m[c];
       inverse_frames(p.length[q], p.cap_indirect, pixel_var[0], pixel_var[1]);
     } else if constexpr (kMoments == BlockMoments::kOneFrame) {

@@ -105,6 +105,36 @@ struct HistoryTexel {
   }
 };
 
+// The history of every pixel as eight planes, in HistoryTexel's order (direct rgb and mean
+// squared luminance, then indirect), so that the CPU's row loops load and store it as vectors.
+template <bool kConst>
+struct HistoryPlanesT {
+  Ptr<float, kConst> c[8] = {};
+
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator HistoryPlanesT<kTo>() const {
+    HistoryPlanesT<kTo> to;
+    for (int k = 0; k < 8; ++k) to.c[k] = c[k];
+    return to;
+  }
+  BOUNCE_HD HistoryTexel get(size_t i) const {
+    return {vec4(c[0][i], c[1][i], c[2][i], c[3][i]), vec4(c[4][i], c[5][i], c[6][i], c[7][i])};
+  }
+  BOUNCE_HD void set(size_t i, const HistoryTexel& t) const {
+    // (Written out: a loop over the planes keeps the row loop from vectorising.)
+    c[0][i] = t.direct.x;
+    c[1][i] = t.direct.y;
+    c[2][i] = t.direct.z;
+    c[3][i] = t.direct.w;
+    c[4][i] = t.indirect.x;
+    c[5][i] = t.indirect.y;
+    c[6][i] = t.indirect.z;
+    c[7][i] = t.indirect.w;
+  }
+};
+using HistoryPlanes = HistoryPlanesT<false>;
+using ConstHistoryPlanes = HistoryPlanesT<true>;
+
 // The demodulation factor and the emission averaged over the frames at rest, so that jittered
 // frames, which see several surfaces in an edge pixel, converge to the average of what they saw.
 template <bool kConst>

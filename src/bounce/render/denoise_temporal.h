@@ -31,11 +31,11 @@ struct TemporalPass {
   const vec3* direct = nullptr;    // direct light with the emission the G-buffer saw
   const vec3* indirect = nullptr;  // null without indirect light
   ConstSurfacePlanes prev_surface;
-  const HistoryTexel* prev = nullptr;
+  ConstHistoryPlanes prev;
   const float* prev_length = nullptr;
   // Out: the next history, this frame's surfaces, the accumulated light (the filter's input),
   // the luminance variance of its mean from the moments over the frames, the history length.
-  HistoryTexel* next = nullptr;
+  HistoryPlanes next;
   SurfacePlanes surface;
   RgbPlanes light_direct, light_indirect;
   float* var_direct = nullptr;
@@ -72,7 +72,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int
     // frames may see another object at an edge, or none, and that is the antialiasing: every
     // frame counts, with or without a surface).
     r.kept = true;
-    r.h = p.prev[i];
+    r.h = p.prev.get(i);
     r.length = p.prev_length[i];
     return r;
   }
@@ -104,7 +104,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int
     const bool same = same_object & near_depth & near_normal;
     const float w = (inside & same) ? (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy) : 0.0f;
     weight += w;
-    r.h.add(w, p.prev[q]);
+    r.h.add(w, p.prev.get(q));
     r.length += w * p.prev_length[q];
   });
   r.kept = weight >= kMinHistoryWeight;
@@ -258,8 +258,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_
   }
   // (Without a surface and history, next is this frame's light: what a later frame at rest
   // averages with.)
-  p.next[i].direct = next_d;
-  p.next[i].indirect = next_i;
+  p.next.set(i, {next_d, next_i});
   p.light_direct.set(i, pick(averaged, vec3(next_d), in_d));
   if constexpr (kIndirect) p.light_indirect.set(i, pick(averaged, vec3(next_i), in_i));
   // The variance of the mean of the frames (the spatial estimate replaces it where n is small).

@@ -46,7 +46,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE float depth_slope_pixel(const float* depth, int 
 inline constexpr int kVarianceBox = 3;  // radius: 7x7
 
 struct BoxPass {
-  const HistoryTexel* history = nullptr;  // this frame's accumulation, with its moments
+  ConstHistoryPlanes history;             // this frame's accumulation, with its moments
   const float* depth = nullptr;           // > 0 where there is a surface
   float* sums[5] = {};  // out: moments summed along rows (direct m1, m2, indirect m1, m2), count
   int width = 0;
@@ -70,7 +70,7 @@ BOUNCE_HD inline void box_row_pixel(const BoxPass& p, size_t row, int x) {
        ++qx) {
     const size_t q = row + size_t(qx);
     float m[5];
-    box_moments(p.history[q], p.depth[q], m);
+    box_moments(p.history.get(q), p.depth[q], m);
     for (int k = 0; k < 5; ++k) s[k] += m[k];
   }
   for (int k = 0; k < 5; ++k) p.sums[k][row + size_t(x)] = s[k];

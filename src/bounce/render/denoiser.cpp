@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -20,7 +21,6 @@ namespace bounce {
 
 using denoise::ConstRgbPlanes;
 using denoise::ConstSurfacePlanes;
-using denoise::HistoryTexel;
 using denoise::RgbPlanes;
 using denoise::SurfacePlanes;
 
@@ -34,19 +34,38 @@ constexpr float kMotionViewRange = 8.0f;
 // clamping their addresses, so they vectorise. The padding covers taps up to 1024 pixels away
 // (steps up to 2^7 with 5x5 kernels).
 constexpr size_t kPlanePadding = 1024;
+// Large allocations start at the same offset within a page, and a row loop that streams through
+// a dozen planes at equal offsets stalls on 4K aliasing (a load looks like it depends on a store
+// to another plane whose address agrees in its low 12 bits). Each plane therefore starts at its
+// own multiple of a cache line within a page, taken in turn.
+constexpr size_t kPlaneStagger = 16;  // floats: a cache line
+inline size_t next_plane_offset() {
+  static std::atomic<size_t> count{0};
+  return kPlanePadding + (count++ % (4096 / (kPlaneStagger * sizeof(float)))) * kPlaneStagger;
+}
 template <int kCount>
 struct Planes {
   std::array<std::vector<float>, kCount> planes;
+  std::array<size_t, kCount> offset{};  // where each plane's first pixel is
   void resize(size_t n) {
-    for (auto& p : planes) p.assign(n + 2 * kPlanePadding, 0.0f);
+    for (int k = 0; k < kCount; ++k) {
+      offset[size_t(k)] = next_plane_offset();
+      planes[size_t(k)].assign(n + offset[size_t(k)] + kPlanePadding, 0.0f);
+    }
   }
-  float* operator[](int k) { return planes[size_t(k)].data() + kPlanePadding; }
-  const float* operator[](int k) const { return planes[size_t(k)].data() + kPlanePadding; }
+  float* operator[](int k) { return planes[size_t(k)].data() + offset[size_t(k)]; }
+  const float* operator[](int k) const { return planes[size_t(k)].data() + offset[size_t(k)]; }
   RgbPlanes rgb(int first) { return {(*this)[first], (*this)[first + 1], (*this)[first + 2]}; }
   ConstRgbPlanes rgb(int first) const {
     return {(*this)[first], (*this)[first + 1], (*this)[first + 2]};
   }
 };
+
+denoise::HistoryPlanes history_planes(Planes<8>& planes) {
+  denoise::HistoryPlanes h;
+  for (int k = 0; k < 8; ++k) h.c[k] = planes[k];
+  return h;
+}
 
 // A frame's surfaces: depth, normal and object id.
 struct SurfaceBuffers {
@@ -112,7 +131,7 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
       for (int x = 0; x < p.width; ++x) {
         const size_t i = first + size_t(x);
         denoise::Reprojected same;
-        same.h = p.prev[i];
+        same.h = p.prev.get(i);
         same.length = p.prev_length[i];
         same.kept = true;
         any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, i, same));
@@ -249,7 +268,7 @@ void box_row(const denoise::BoxPass& p, int y) {
   const size_t row = size_t(y) * size_t(p.width);
   for (int x = 0; x < p.width; ++x) {
     float m[5];
-    denoise::box_moments(p.history[row + size_t(x)], p.depth[row + size_t(x)], m);
+    denoise::box_moments(p.history.get(row + size_t(x)), p.depth[row + size_t(x)], m);
     for (int k = 0; k < 5; ++k) moments[size_t(k) * n + size_t(x + r)] = m[k];
   }
   for (int k = 0; k < 5; ++k)
@@ -425,7 +444,7 @@ struct Denoiser::Buffers {
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
   int rest_frames = 0;        // consecutive runs at rest up to the last one
   SurfaceBuffers surface, prev_surface;
-  std::vector<HistoryTexel> history, prev_history;
+  Planes<8> history, prev_history;  // denoise::HistoryPlanes
   std::vector<float> prev_length;  // last run's history_length_
   Planes<6> rest;                  // RestPlanes: factor rgb, emission rgb
   Planes<6> light;                 // accumulated demodulated light: direct rgb, indirect rgb
@@ -459,10 +478,10 @@ struct Denoiser::Buffers {
     const size_t n = size_t(w) * size_t(h);
     if (!keep_last) {
       surface.resize(n);
-      history.assign(n, HistoryTexel{});
+      history.resize(n);
     }
     prev_surface.resize(n);
-    prev_history.assign(n, HistoryTexel{});
+    prev_history.resize(n);
     prev_length.assign(n, 0.0f);
     rest.resize(n);
     light.resize(n);
@@ -599,9 +618,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.direct = direct.data();
     temporal.indirect = indirect ? indirect->data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
-    temporal.prev = b.prev_history.data();
+    temporal.prev = history_planes(b.prev_history);
     temporal.prev_length = b.prev_length.data();
-    temporal.next = b.history.data();
+    temporal.next = history_planes(b.history);
     temporal.surface = b.surface.view();
     temporal.light_direct = b.light.rgb(0);
     temporal.light_indirect = b.light.rgb(3);
@@ -652,7 +671,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         b.row_box[size_t(y)] = needed;
       }
       denoise::BoxPass box;
-      box.history = b.history.data();
+      box.history = history_planes(b.history);
       box.depth = depth;
       for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
       box.width = w;
@@ -708,7 +727,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     // (Both lights at half resolution count as the direct stage, as both at full resolution do;
     // with every light there the upsample remodulates.)
     ScopedStage stage(frame.times, plan.direct_half ? "denoise/atrous" : "denoise/indirect");
-    const denoise::HalfVarianceInputs variance{b.history.data(), history_length_.data(),
+    const denoise::HalfVarianceInputs variance{history_planes(b.history), history_length_.data(),
                                                cap_indirect, b.history_frames == 0};
     remodulated = denoise::filter_half(passes, base, plan, b.half_planes(), variance, remodulate,
                                        rest, light_d, light_i);
