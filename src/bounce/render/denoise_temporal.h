@@ -64,23 +64,15 @@ struct Reprojected {
   float length = 0.0f;
   bool kept = false;
 };
-BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int x, int y,
-                                                      size_t i) {
+// Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
+// in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
+// where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
+// depth_tolerance relative, normals within normal_tolerance). Branch-free (taps outside the
+// image read its first pixel with weight 0; a pixel without a surface keeps nothing), so the
+// CPU's row loop vectorises.
+BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
+                                                            size_t i) {
   Reprojected r;
-  if (!p.s.reproject) {
-    // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
-    // frames may see another object at an edge, or none, and that is the antialiasing: every
-    // frame counts, with or without a surface).
-    r.kept = true;
-    r.h = p.prev.get(i);
-    r.length = p.prev_length[i];
-    return r;
-  }
-  // Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
-  // in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
-  // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
-  // depth_tolerance relative, normals within normal_tolerance). The four taps are read
-  // branch-free (taps outside the image read its first pixel with weight 0).
   const vec2 m = p.g.motion[i];
   const float sx = float(p.prev_width) / float(p.width),
               sy = float(p.prev_height) / float(p.height);
@@ -107,12 +99,24 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int
     r.h.add(w, p.prev.get(q));
     r.length += w * p.prev_length[q];
   });
-  r.kept = weight >= kMinHistoryWeight;
-  if (!r.kept) return Reprojected{};
-  const float inv = 1.0f / weight;
+  r.kept = (weight >= kMinHistoryWeight) & p.g.hit(i);
+  const float inv = r.kept ? 1.0f / weight : 0.0f;
   r.h.direct *= inv;
   r.h.indirect *= inv;
   r.length *= inv;
+  return r;
+}
+
+BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int x, int y,
+                                                      size_t i) {
+  if (p.s.reproject) return reproject_moved(p, x, y, i);
+  // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
+  // frames may see another object at an edge, or none, and that is the antialiasing: every
+  // frame counts, with or without a surface).
+  Reprojected r;
+  r.kept = true;
+  r.h = p.prev.get(i);
+  r.length = p.prev_length[i];
   return r;
 }
 

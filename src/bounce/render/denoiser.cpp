@@ -109,9 +109,9 @@ BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checke
   for (int x = x1; x < width; ++x) checked(x);
 }
 
-// The temporal pass row by row: the reprojected history (scalar: its taps go where the motion
-// says) into row planes, then the blend, in a loop the compiler vectorises. Marks the rows with a
-// short history.
+// The temporal pass row by row: the reprojected history into row planes (gathering the taps
+// where the motion says; scalar where the world changed and the history is clipped), then the
+// blend, in a loop the compiler vectorises. Marks the rows with a short history.
 template <bool kIndirect, bool kRest>
 void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
   for_rows(pass.height, [&](int y) {
@@ -141,7 +141,14 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
       row_planes.resize(10 * size_t(p.width));
       denoise::ReprojectedRow row;
       for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
-      for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
+      if (p.s.clip) {
+        // (The world changed: each kept history is clipped to its neighbourhood, scalar.)
+        for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
+      } else {
+        BOUNCE_IVDEP
+        for (int x = 0; x < p.width; ++x)
+          row.store(x, denoise::reproject_moved(p, x, y, first + size_t(x)));
+      }
       const float* v[10];
       for (int c = 0; c < 10; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
