@@ -166,9 +166,8 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   prev_history_.fill_zero();
   prev_length_.resize(n);
   prev_length_.fill_zero();
-  for (Rgb* p : {&rest_factor_, &rest_emission_, &light_direct_, &light_indirect_, &upsampled_[0],
-                 &upsampled_[1], &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0],
-                 &filter_indirect_[1]})
+  for (Rgb* p : {&rest_factor_, &rest_emission_, &upsampled_[0], &upsampled_[1], &filter_direct_[0],
+                 &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
     p->resize(n);
   for (auto* b : {&box_[0], &box_[1], &box_[2], &box_[3], &box_[4], &depth_slope_, &var_direct_,
                   &var_indirect_, &filter_var_direct_[0], &filter_var_direct_[1],
@@ -248,8 +247,6 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.prev_length = prev_length_.data();
     temporal.next = history_.view();
     temporal.surface = surface_.view();
-    temporal.light_direct = light_direct_.view();
-    temporal.light_indirect = light_indirect_.view();
     temporal.var_direct = var_direct_.data();
     temporal.var_indirect = var_indirect_.data();
     temporal.length = length_.data();
@@ -272,8 +269,10 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   rest_frames_ = rest && !resized ? denoise::next_count(rest_frames_) : 0;
   history_frames_ = state == HistoryState::kReset ? 0 : denoise::next_count(history_frames_);
 
-  ConstRgbPlanes light_d = light_direct_.view();
-  ConstRgbPlanes light_i = light_indirect_.view();
+  // The filter's input: the accumulated demodulated light, the history's.
+  const denoise::HistoryPlanes history = history_.view();
+  ConstRgbPlanes light_d{history.c[0], history.c[1], history.c[2]};
+  ConstRgbPlanes light_i{history.c[4], history.c[5], history.c[6]};
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const float* depth = surface_.depth.data();
   const denoise::AtrousPlan plan =

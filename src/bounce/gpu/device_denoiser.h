@@ -54,7 +54,7 @@ class DeviceDenoiser {
   Surface surface_, prev_surface_, half_surface_;
   History history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;
-  Rgb rest_factor_, rest_emission_, light_direct_, light_indirect_;
+  Rgb rest_factor_, rest_emission_;
   DeviceBuffer<float> box_[5];
   DeviceBuffer<float> depth_slope_, var_direct_, var_indirect_;
   DeviceBuffer<uint32_t> row_short_;

@@ -33,11 +33,10 @@ struct TemporalPass {
   ConstSurfacePlanes prev_surface;
   ConstHistoryPlanes prev;
   const float* prev_length = nullptr;
-  // Out: the next history, this frame's surfaces, the accumulated light (the filter's input),
-  // the luminance variance of its mean from the moments over the frames, the history length.
+  // Out: the next history (its light is the filter's input), this frame's surfaces, the
+  // luminance variance of the light's mean from the moments over the frames, the history length.
   HistoryPlanes next;
   SurfacePlanes surface;
-  RgbPlanes light_direct, light_indirect;
   float* var_direct = nullptr;
   float* var_indirect = nullptr;
   float* length = nullptr;
@@ -261,10 +260,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_
     next_i = vec4(ind, next_i.w);
   }
   // (Without a surface and history, next is this frame's light: what a later frame at rest
-  // averages with.)
+  // averages with. In motion the filter's result there is not used: remodulation keeps what the
+  // technique wrote, so the history's light serves as the filter's input everywhere.)
   p.next.set(i, {next_d, next_i});
-  p.light_direct.set(i, pick(averaged, vec3(next_d), in_d));
-  if constexpr (kIndirect) p.light_indirect.set(i, pick(averaged, vec3(next_i), in_i));
   // The variance of the mean of the frames (the spatial estimate replaces it where n is small).
   const float m1_d = luminance_of(vec3(next_d)), m1_i = luminance_of(vec3(next_i));
   p.var_direct[i] = pick(hit, glm::max(next_d.w - m1_d * m1_d, 0.0f) * alpha, 0.0f);

@@ -454,7 +454,6 @@ struct Denoiser::Buffers {
   Planes<8> history, prev_history;  // denoise::HistoryPlanes
   std::vector<float> prev_length;  // last run's history_length_
   Planes<6> rest;                  // RestPlanes: factor rgb, emission rgb
-  Planes<6> light;                 // accumulated demodulated light: direct rgb, indirect rgb
   Planes<5> box;                   // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
@@ -491,7 +490,6 @@ struct Denoiser::Buffers {
     prev_history.resize(n);
     prev_length.assign(n, 0.0f);
     rest.resize(n);
-    light.resize(n);
     box.resize(n);
     depth_slope.assign(n, 0.0f);
     row_short.assign(size_t(h), 0);
@@ -629,8 +627,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.prev_length = b.prev_length.data();
     temporal.next = history_planes(b.history);
     temporal.surface = b.surface.view();
-    temporal.light_direct = b.light.rgb(0);
-    temporal.light_indirect = b.light.rgb(3);
     temporal.var_direct = b.variance[0];
     temporal.var_indirect = b.variance[1];
     temporal.length = history_length_.data();
@@ -655,8 +651,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   b.rest_frames = rest && !resized ? denoise::next_count(b.rest_frames) : 0;
   b.history_frames = state == HistoryState::kReset ? 0 : denoise::next_count(b.history_frames);
 
-  ConstRgbPlanes light_d = std::as_const(b.light).rgb(0);
-  ConstRgbPlanes light_i = std::as_const(b.light).rgb(3);
+  // The filter's input: the accumulated demodulated light, the history's.
+  ConstRgbPlanes light_d = std::as_const(b.history).rgb(0);
+  ConstRgbPlanes light_i = std::as_const(b.history).rgb(4);
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const denoise::AtrousPlan plan =
       denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
