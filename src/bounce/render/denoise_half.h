@@ -174,11 +174,13 @@ struct HalfUpsample {
   int half_height = 0;
   float sigma_depth = 0.0f;
   RgbPlanes out[kHalfMaxLights];  // full resolution
-  // With `remodulated` (every light is filtered here: direct, and indirect if any), the result
-  // goes straight through remodulate_light into the output images instead of `out`; `rest`:
-  // remodulate_pixel's kRest.
+  // With `remodulated` (nothing is filtered after this), the result goes straight through
+  // remodulate_light into the output images instead of `out`; `rest`: remodulate_pixel's kRest.
+  // With `indirect_only` the one light here is indirect light, and direct light, filtered
+  // already, comes from remodulate.direct.
   bool remodulated = false;
   bool rest = false;
+  bool indirect_only = false;
   RemodulatePass remodulate;
 };
 
@@ -191,13 +193,17 @@ struct UpsampleToPlanes {
     for (int l = 0; l < kLights; ++l) p.out[l].set(i, light[l]);
   }
 };
-template <int kCount, bool kRest>
+// kIndirectOnly: the one light is indirect (HalfUpsample::indirect_only).
+template <int kCount, bool kRest, bool kIndirectOnly = false>
 struct UpsampleRemodulated {
   static constexpr int kLights = kCount;
   const HalfUpsample& p;
   BOUNCE_HD BOUNCE_DENOISE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
-    remodulate_light<kLights == 2, kRest>(p.remodulate, i, light[0],
-                                          kLights == 2 ? light[kLights - 1] : vec3(0.0f));
+    if constexpr (kIndirectOnly)
+      remodulate_light<true, kRest>(p.remodulate, i, p.remodulate.direct.get(i), light[0]);
+    else
+      remodulate_light<kLights == 2, kRest>(p.remodulate, i, light[0],
+                                            kLights == 2 ? light[kLights - 1] : vec3(0.0f));
   }
 };
 
@@ -313,6 +319,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void with_upsample_store(const HalfUpsample& p, 
     return p.rest ? f(UpsampleRemodulated<2, true>{p}) : f(UpsampleRemodulated<2, false>{p});
   }
   if (!p.remodulated) return f(UpsampleToPlanes<1>{p});
+  if (p.indirect_only)
+    return p.rest ? f(UpsampleRemodulated<1, true, true>{p})
+                  : f(UpsampleRemodulated<1, false, true>{p});
   return p.rest ? f(UpsampleRemodulated<1, true>{p}) : f(UpsampleRemodulated<1, false>{p});
 }
 

@@ -51,8 +51,9 @@ struct AtrousPlan {
   bool half = false;            // indirect light filtered at half resolution
   // At full resolution with as many passes, both lights share each pass's geometry.
   bool both = false;
-  // Every light is filtered at half resolution: the upsample remodulates.
-  bool all_half = false;
+  // Nothing is filtered after the half-resolution filter: its upsample remodulates (with direct
+  // light filtered at full resolution before it, where it is not filtered there).
+  bool upsample_remodulates = false;
   // The spatial variance estimated at half resolution (denoise_variance.h): every light is
   // filtered there and every pixel's history is short.
   bool half_variance = false;
@@ -78,7 +79,7 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
   p.both = p.indirect_iterations > 0 && !p.half && !p.direct_half &&
            p.indirect_iterations == p.direct_iterations;
-  p.all_half = p.direct_half && (!has_indirect || p.half);
+  p.upsample_remodulates = (p.direct_half || p.half) && (!has_indirect || p.half);
   // A pixel's history is at most history_frames long (it restarted at the reset). (Indirect
   // light that is not filtered needs no variance.)
   p.half_variance = p.direct_half && (p.indirect_iterations == 0 || p.half) &&
@@ -137,8 +138,9 @@ struct HalfVarianceInputs {
 // full resolution: downsampled together, filtered (sharing the geometric weights for the passes
 // both take), upsampled together. Replaces light_d and light_i by the results of those filtered
 // here. With plan.half_variance the spatial variance is estimated here from `variance`'s
-// inputs, and base's variance planes are not read. With plan.all_half the upsample remodulates
-// into `remodulate`'s images (kRest: `rest`), and returns true: nothing is left to remodulate.
+// inputs, and base's variance planes are not read. With plan.upsample_remodulates the upsample
+// remodulates into `remodulate`'s images (kRest: `rest`; direct light from remodulate.direct
+// where it is not filtered here), and returns true: nothing is left to remodulate.
 // The backend runs the passes: downsample(HalfDownsample), half_variance(HalfVariancePass),
 // depth_slope(depth, w, h, out), atrous(pass, both, variance), upsample(HalfUpsample).
 template <typename Backend>
@@ -250,13 +252,14 @@ bool filter_half(const Backend& backend, const AtrousPass& base, const AtrousPla
     up.half_light[l] = filtered[l];
     up.out[l] = half.upsampled[l];
   }
-  up.remodulated = plan.all_half;
+  up.remodulated = plan.upsample_remodulates;
+  up.indirect_only = slot_d < 0;
   up.rest = rest;
   up.remodulate = remodulate;
   backend.upsample(up);
   if (slot_d >= 0) light_d = half.upsampled[slot_d];
   if (slot_i >= 0) light_i = half.upsampled[slot_i];
-  return plan.all_half;
+  return plan.upsample_remodulates;
 }
 
 // The first pass over direct (and indirect) light: inputs, the guide planes and the sigmas;
