@@ -606,16 +606,21 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     b.motion.assign(gbuffer.motion.begin(), gbuffer.motion.end());
   else
     b.motion.clear();
-  // Last run's "next" is this run's "previous".
-  std::swap(b.surface, b.prev_surface);
-  std::swap(b.history, b.prev_history);
-  std::swap(history_length_, b.prev_length);
-
   const DenoiseSettings& s = settings_;
   const bool rest = denoise::denoise_at_rest(s, state);
   const denoise::TemporalSettings temporal_settings =
       denoise::temporal_settings(s, state, frame.indirect_accumulated, resized, b.rest_valid);
   const float cap_indirect = temporal_settings.cap_indirect;
+  // Last run's "next" is this run's "previous". Where each pixel reads its own history (at rest)
+  // the history and its length are updated in place instead: one stream through memory, not two.
+  std::swap(b.surface, b.prev_surface);
+  const bool in_place = temporal_settings.history && !temporal_settings.reproject;
+  if (!in_place) {
+    std::swap(b.history, b.prev_history);
+    std::swap(history_length_, b.prev_length);
+  }
+  Planes<8>& prev_history = in_place ? b.history : b.prev_history;
+  std::vector<float>& prev_length = in_place ? history_length_ : b.prev_length;
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;
@@ -623,8 +628,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.direct = direct.data();
     temporal.indirect = indirect ? indirect->data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
-    temporal.prev = history_planes(b.prev_history);
-    temporal.prev_length = b.prev_length.data();
+    temporal.prev = history_planes(prev_history);
+    temporal.prev_length = prev_length.data();
     temporal.next = history_planes(b.history);
     temporal.surface = b.surface.view();
     temporal.var_direct = b.variance[0];
