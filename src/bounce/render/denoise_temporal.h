@@ -66,9 +66,9 @@ struct Reprojected {
 // Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
 // in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
 // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
-// depth_tolerance relative, normals within normal_tolerance). Branch-free (taps outside the
-// image read its first pixel with weight 0; a pixel without a surface keeps nothing), so the
-// CPU's row loop vectorises.
+// depth_tolerance relative, normals within normal_tolerance). Branch-free: taps outside the
+// image read its first pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
+// still leaves the CPU's row loop scalar: "no vectype" for the motion's load.)
 BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
                                                             size_t i) {
   Reprojected r;

@@ -109,9 +109,9 @@ BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checke
   for (int x = x1; x < width; ++x) checked(x);
 }
 
-// The temporal pass row by row: the reprojected history into row planes (gathering the taps
-// where the motion says; scalar where the world changed and the history is clipped), then the
-// blend, in a loop the compiler vectorises. Marks the rows with a short history.
+// The temporal pass row by row: the reprojected history into row planes (scalar: its taps go
+// where the motion says; branch-free but where the world changed and the history is clipped),
+// then the blend, in a loop the compiler vectorises. Marks the rows with a short history.
 template <bool kIndirect, bool kRest>
 void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
   for_rows(pass.height, [&](int y) {
