@@ -68,7 +68,8 @@ struct Reprojected {
 // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
 // depth_tolerance relative, normals within normal_tolerance). Branch-free: taps outside the
 // image read its first pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
-// still leaves the CPU's row loop scalar: "no vectype" for the motion's load.)
+// still leaves the CPU's row loop scalar: it makes the taps' loads masked gathers, which it
+// only emulates for this target and cannot mask.)
 BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
                                                             size_t i) {
   Reprojected r;
