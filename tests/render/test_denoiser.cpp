@@ -1022,21 +1022,21 @@ TEST(Denoiser, RecordsItsSubStages) {
   const GBuffer g = plane(4, 4);
   for (int half_direct_frames : {0, 1}) {
     for (int indirect_resolution : {1, 2}) {
-    Denoiser d;
-    d.settings().half_direct_frames = half_direct_frames;
-    d.settings().indirect_resolution = indirect_resolution;
-    StageTimes times;
-    Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
-    d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
-    std::set<std::string> names;
-    for (const StageTime& s : times.stages()) names.insert(s.name);
-    std::set<std::string> expected{"denoise/temporal", "denoise/variance", "denoise/atrous"};
-    // (Both lights at half resolution are one stage, as both at full resolution are; indirect
-    // light at full resolution is a stage of its own. When indirect light is filtered at half
-    // resolution, last, its upsample remodulates.)
-    if (half_direct_frames == 0 || indirect_resolution == 1) expected.insert("denoise/indirect");
-    if (indirect_resolution == 1) expected.insert("denoise/remodulate");
-    EXPECT_EQ(names, expected) << half_direct_frames << " " << indirect_resolution;
+      Denoiser d;
+      d.settings().half_direct_frames = half_direct_frames;
+      d.settings().indirect_resolution = indirect_resolution;
+      StageTimes times;
+      Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
+      d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
+      std::set<std::string> names;
+      for (const StageTime& s : times.stages()) names.insert(s.name);
+      std::set<std::string> expected{"denoise/temporal", "denoise/variance", "denoise/atrous"};
+      // (Both lights at half resolution are one stage, as both at full resolution are; indirect
+      // light at full resolution is a stage of its own. When indirect light is filtered at half
+      // resolution, last, its upsample remodulates.)
+      if (half_direct_frames == 0 || indirect_resolution == 1) expected.insert("denoise/indirect");
+      if (indirect_resolution == 1) expected.insert("denoise/remodulate");
+      EXPECT_EQ(names, expected) << half_direct_frames << " " << indirect_resolution;
     }
   }
 }
