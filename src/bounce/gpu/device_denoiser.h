@@ -49,7 +49,7 @@ class DeviceDenoiser {
 
   int width_ = 0, height_ = 0;
   bool valid_ = false, had_indirect_ = false, rest_valid_ = false;
-  int rest_frames_ = 0;  // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
+  int rest_frames_ = 0;     // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
   int history_frames_ = 0;  // frames since the last reset (Buffers::history_frames)
   Surface surface_, prev_surface_, half_surface_;
   History history_, prev_history_;

@@ -40,8 +40,8 @@ inline constexpr int kHalfMaxLights = 2;
 enum class BlockMoments { kNone, kOneFrame, kHistory };
 
 struct HalfDownsample {
-  ConstSurfacePlanes surface;  // full resolution
-  int lights = 1;              // how many entries of light, variance, half_* are used
+  ConstSurfacePlanes surface;            // full resolution
+  int lights = 1;                        // how many entries of light, variance, half_* are used
   ConstRgbPlanes light[kHalfMaxLights];  // full resolution, demodulated
   const float* variance[kHalfMaxLights] = {};
   int width = 0;  // full resolution
@@ -55,8 +55,8 @@ struct HalfDownsample {
   // half_moments, and half_variance receives the scale half_box_variance multiplies the box's
   // variance by, instead of the variance of the full-resolution estimates (`variance` unread).
   BlockMoments moments = BlockMoments::kNone;
-  ConstHistoryPlanes history;             // kHistory: the accumulation, with its moments
-  const float* length = nullptr;          // kHistory: history length per pixel
+  ConstHistoryPlanes history;     // kHistory: the accumulation, with its moments
+  const float* length = nullptr;  // kHistory: history length per pixel
   float cap_indirect = 0.0f;
   float* half_moments[5] = {};
 };
@@ -162,9 +162,9 @@ BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) 
 }
 
 struct HalfUpsample {
-  ConstSurfacePlanes surface;  // full resolution
-  const float* depth_slope;    // full resolution
-  int lights = 1;              // how many entries of light, half_light and out are used
+  ConstSurfacePlanes surface;            // full resolution
+  const float* depth_slope;              // full resolution
+  int lights = 1;                        // how many entries of light, half_light and out are used
   ConstRgbPlanes light[kHalfMaxLights];  // full resolution, unfiltered (the fallback)
   ConstSurfacePlanes half_surface;
   ConstRgbPlanes half_light[kHalfMaxLights];  // filtered

@@ -128,8 +128,8 @@ struct HalfPlanes {
 
 // What the spatial variance at half resolution reads at full resolution besides the light.
 struct HalfVarianceInputs {
-  ConstHistoryPlanes history;             // this frame's accumulation, with its moments
-  const float* length = nullptr;          // its history length per pixel
+  ConstHistoryPlanes history;     // this frame's accumulation, with its moments
+  const float* length = nullptr;  // its history length per pixel
   float cap_indirect = 0.0f;
   bool one_frame = false;  // every pixel holds one frame (a reset): neither is read
 };

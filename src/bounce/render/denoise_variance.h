@@ -46,8 +46,8 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE float depth_slope_pixel(const float* depth, int 
 inline constexpr int kVarianceBox = 3;  // radius: 7x7
 
 struct BoxPass {
-  ConstHistoryPlanes history;             // this frame's accumulation, with its moments
-  const float* depth = nullptr;           // > 0 where there is a surface
+  ConstHistoryPlanes history;    // this frame's accumulation, with its moments
+  const float* depth = nullptr;  // > 0 where there is a surface
   float* sums[5] = {};  // out: moments summed along rows (direct m1, m2, indirect m1, m2), count
   int width = 0;
 };

@@ -452,9 +452,9 @@ struct Denoiser::Buffers {
   int rest_frames = 0;        // consecutive runs at rest up to the last one
   SurfaceBuffers surface, prev_surface;
   Planes<8> history, prev_history;  // denoise::HistoryPlanes
-  std::vector<float> prev_length;  // last run's history_length_
-  Planes<6> rest;                  // RestPlanes: factor rgb, emission rgb
-  Planes<5> box;                   // its moments summed along rows, for the spatial variance
+  std::vector<float> prev_length;   // last run's history_length_
+  Planes<6> rest;                   // RestPlanes: factor rgb, emission rgb
+  Planes<5> box;                    // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
