@@ -300,20 +300,14 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
       denoise::atrous_base(s, ConstSurfacePlanes(surface_.view()), depth_slope_.data(), light_d,
                            var_direct_.data(), light_i, var_indirect_.data(), w, h);
   const device_denoise::DevicePasses passes;
-  const bool both = plan.both;
-  if (spatial && !plan.direct_half) {
-    auto outputs = [this](int k, denoise::AtrousPass& pass) {
-      pass.direct.out = filter_direct_[k & 1].view();
-      pass.direct.out_var = filter_var_direct_[k & 1].data();
-      pass.indirect.out = filter_indirect_[k & 1].view();
-      pass.indirect.out_var = filter_var_indirect_[k & 1].data();
-    };
-    const int iterations = plan.direct_iterations;
-    const denoise::AtrousPass result =
-        denoise::run_atrous(passes, base, both, 0, iterations, iterations, outputs);
-    light_d = result.direct.in;
-    if (both) light_i = result.indirect.in;
+  denoise::FullPlanes full;
+  for (int k = 0; k < 2; ++k) {
+    full.direct[k] = filter_direct_[k].view();
+    full.indirect[k] = filter_indirect_[k].view();
+    full.direct_var[k] = filter_var_direct_[k].data();
+    full.indirect_var[k] = filter_var_indirect_[k].data();
   }
+  if (plan.direct_full) denoise::filter_direct_full(passes, base, plan, full, light_d, light_i);
   denoise::RemodulatePass remodulate{
       g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},
       light_d, light_i,
@@ -337,19 +331,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     remodulated = denoise::filter_half(passes, base, plan, half, variance, remodulate, rest,
                                        light_d, light_i);
   }
-  if (plan.indirect_iterations > 0 && !both && !plan.half) {
-    denoise::AtrousPass indirect_base = base;
-    indirect_base.direct = base.indirect;
-    indirect_base.sigma_luminance = s.sigma_luminance_indirect;
-    // The direct result sits in the ping-pong's direct planes; these are the indirect ones.
-    auto outputs = [this](int k, denoise::AtrousPass& p) {
-      p.direct.out = filter_indirect_[k & 1].view();
-      p.direct.out_var = filter_var_indirect_[k & 1].data();
-    };
-    const int iterations = plan.indirect_iterations;
-    light_i = denoise::run_atrous(passes, indirect_base, false, 0, iterations, iterations, outputs)
-                  .direct.in;
-  }
+  if (plan.indirect_full) denoise::filter_indirect_full(passes, base, plan, full, light_i);
   if (remodulated) return;
   remodulate.direct = light_d;
   remodulate.indirect = light_i;

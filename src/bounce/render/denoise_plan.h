@@ -51,6 +51,10 @@ struct AtrousPlan {
   bool half = false;            // indirect light filtered at half resolution
   // At full resolution with as many passes, both lights share each pass's geometry.
   bool both = false;
+  // Direct light (with indirect light when `both`) filtered at full resolution; indirect light
+  // filtered at full resolution on its own, after it.
+  bool direct_full = false;
+  bool indirect_full = false;
   // Nothing is filtered after the half-resolution filter: its upsample remodulates (with direct
   // light filtered at full resolution before it, where it is not filtered there).
   bool upsample_remodulates = false;
@@ -79,6 +83,8 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   p.half = p.indirect_iterations > 0 && s.indirect_resolution == 2;
   p.both = p.indirect_iterations > 0 && !p.half && !p.direct_half &&
            p.indirect_iterations == p.direct_iterations;
+  p.direct_full = spatial && !p.direct_half;
+  p.indirect_full = p.indirect_iterations > 0 && !p.both && !p.half;
   p.upsample_remodulates = (p.direct_half || p.half) && (!has_indirect || p.half);
   // A pixel's history is at most history_frames long (it restarted at the reset). (Indirect
   // light that is not filtered needs no variance.)
@@ -110,6 +116,49 @@ AtrousPass run_atrous(const Passes& passes, AtrousPass pass, bool both, int firs
     pass.indirect.in_var = pass.indirect.out_var;
   }
   return pass;
+}
+
+// The full-resolution a-trous ping-pong, owned by the backend: per pass parity, each light's
+// rgb and variance.
+struct FullPlanes {
+  RgbPlanes direct[2], indirect[2];
+  float* direct_var[2] = {};
+  float* indirect_var[2] = {};
+};
+
+// Direct light's full-resolution passes (plan.direct_full), with indirect light where the plan
+// has both share them. Replaces light_d (and light_i) by the results.
+template <typename Backend>
+void filter_direct_full(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
+                        const FullPlanes& planes, ConstRgbPlanes& light_d,
+                        ConstRgbPlanes& light_i) {
+  auto outputs = [&planes](int k, AtrousPass& pass) {
+    pass.direct.out = planes.direct[k & 1];
+    pass.direct.out_var = planes.direct_var[k & 1];
+    pass.indirect.out = planes.indirect[k & 1];
+    pass.indirect.out_var = planes.indirect_var[k & 1];
+  };
+  const int n = plan.direct_iterations;
+  const AtrousPass result = run_atrous(backend, base, plan.both, 0, n, n, outputs);
+  light_d = result.direct.in;
+  if (plan.both) light_i = result.indirect.in;
+}
+
+// Indirect light's full-resolution passes on their own (plan.indirect_full), in the pass's direct
+// slot with indirect light's luminance sigma. The direct result sits in the direct planes, so
+// these write the indirect ones. Replaces light_i by the result.
+template <typename Backend>
+void filter_indirect_full(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
+                          const FullPlanes& planes, ConstRgbPlanes& light_i) {
+  AtrousPass alone = base;
+  alone.direct = base.indirect;
+  alone.sigma_luminance = base.sigma_luminance_indirect;
+  auto outputs = [&planes](int k, AtrousPass& pass) {
+    pass.direct.out = planes.indirect[k & 1];
+    pass.direct.out_var = planes.indirect_var[k & 1];
+  };
+  const int n = plan.indirect_iterations;
+  light_i = run_atrous(backend, alone, false, 0, n, n, outputs).direct.in;
 }
 
 // The planes the half-resolution filter works in, owned by the backend. Per light slot (the

@@ -509,6 +509,17 @@ struct Denoiser::Buffers {
     valid = valid && keep_last;
   }
 
+  denoise::FullPlanes full_planes() {
+    denoise::FullPlanes f;
+    for (int k = 0; k < 2; ++k) {
+      f.direct[k] = filter[k].rgb(kFilterDirect);
+      f.indirect[k] = filter[k].rgb(kFilterIndirect);
+      f.direct_var[k] = filter[k][kVarDirect];
+      f.indirect_var[k] = filter[k][kVarIndirect];
+    }
+    return f;
+  }
+
   denoise::HalfPlanes half_planes() {
     denoise::HalfPlanes h;
     h.surface = half_surface.view();
@@ -711,20 +722,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   float* half_rows[5];
   for (int k = 0; k < 5; ++k) half_rows[k] = b.half_box[5 + k];
   const CpuPasses passes{half_rows};
-  const bool both = plan.both;
-  if (spatial && !plan.direct_half) {
+  if (plan.direct_full) {
     ScopedStage stage(frame.times, "denoise/atrous");
-    auto outputs = [&](int k, denoise::AtrousPass& pass) {
-      Planes<8>& out = b.filter[k & 1];
-      pass.direct.out = out.rgb(kFilterDirect);
-      pass.direct.out_var = out[kVarDirect];
-      pass.indirect.out = out.rgb(kFilterIndirect);
-      pass.indirect.out_var = out[kVarIndirect];
-    };
-    const int n = plan.direct_iterations;
-    const denoise::AtrousPass result = denoise::run_atrous(passes, base, both, 0, n, n, outputs);
-    light_d = result.direct.in;
-    if (both) light_i = result.indirect.in;
+    denoise::filter_direct_full(passes, base, plan, b.full_planes(), light_d, light_i);
   }
   // Remodulation, of the filtered light wherever it ends up.
   denoise::RemodulatePass remodulate{
@@ -741,20 +741,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     remodulated = denoise::filter_half(passes, base, plan, b.half_planes(), variance, remodulate,
                                        rest, light_d, light_i);
   }
-  if (plan.indirect_iterations > 0 && !both && !plan.half) {
+  if (plan.indirect_full) {
     ScopedStage stage(frame.times, "denoise/indirect");
-    // Indirect light alone, in the pass's first slot with its own luminance sigma; the direct
-    // result sits in the ping-pong planes' direct slots, so it writes the others.
-    denoise::AtrousPass indirect_base = base;
-    indirect_base.direct = base.indirect;
-    indirect_base.sigma_luminance = s.sigma_luminance_indirect;
-    auto outputs = [&](int k, denoise::AtrousPass& pass) {
-      Planes<8>& out = b.filter[k & 1];
-      pass.direct.out = out.rgb(kFilterIndirect);
-      pass.direct.out_var = out[kVarIndirect];
-    };
-    const int n = plan.indirect_iterations;
-    light_i = denoise::run_atrous(passes, indirect_base, false, 0, n, n, outputs).direct.in;
+    denoise::filter_indirect_full(passes, base, plan, b.full_planes(), light_i);
   }
   if (!remodulated) {
     ScopedStage stage(frame.times, "denoise/remodulate");
