@@ -271,8 +271,8 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
 
   // The filter's input: the accumulated demodulated light, the history's.
   const denoise::HistoryPlanes history = history_.view();
-  ConstRgbPlanes light_d{history.c[0], history.c[1], history.c[2]};
-  ConstRgbPlanes light_i{history.c[4], history.c[5], history.c[6]};
+  ConstRgbPlanes light_d = history.direct_light();
+  ConstRgbPlanes light_i = history.indirect_light();
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const float* depth = surface_.depth.data();
   const denoise::AtrousPlan plan =
@@ -281,7 +281,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   // (With the plan's half_variance, the half-resolution filter estimates it: filter_half.)
   if (spatial && !plan.half_variance) {
     denoise::BoxPass box;
-    box.history = history_.view();
+    box.history = history;
     box.depth = depth;
     for (int k = 0; k < 5; ++k) box.sums[k] = box_[k].data();
     box.width = w;
@@ -312,7 +312,6 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
       g,       {ConstRgbPlanes(rest_factor_.view()), ConstRgbPlanes(rest_emission_.view())},
       light_d, light_i,
       direct,  indirect};
-  bool remodulated = false;
   if (plan.direct_half || plan.half) {
     denoise::HalfPlanes half;
     half.surface = half_surface_.view();
@@ -326,13 +325,12 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     for (int k = 0; k < 5; ++k) half.moments[k] = half_moments_[k].data();
     half.width = half_width_;
     half.height = half_height_;
-    const denoise::HalfVarianceInputs variance{history_.view(), length_.data(), cap_indirect,
+    const denoise::HalfVarianceInputs variance{history, length_.data(), cap_indirect,
                                                history_frames_ == 0};
-    remodulated = denoise::filter_half(passes, base, plan, half, variance, remodulate, rest,
-                                       light_d, light_i);
+    denoise::filter_half(passes, base, plan, half, variance, remodulate, rest, light_d, light_i);
   }
   if (plan.indirect_full) denoise::filter_indirect_full(passes, base, plan, full, light_i);
-  if (remodulated) return;
+  if (plan.upsample_remodulates) return;
   remodulate.direct = light_d;
   remodulate.indirect = light_i;
   if (has_indirect)

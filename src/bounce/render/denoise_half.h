@@ -98,7 +98,10 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
       float m[5];
       box_moments(p.history.get(q), z, m);
       for (int c = 0; c < 5; ++c) moments[c] += m[c];
-      inverse_frames(p.length[q], p.cap_indirect, pixel_var[0], pixel_var[1]);
+      float frames_d, frames_i;
+      averaged_frames(p.length[q], p.cap_indirect, frames_d, frames_i);
+      pixel_var[0] = 1.0f / frames_d;
+      pixel_var[1] = 1.0f / frames_i;
     } else if constexpr (kMoments == BlockMoments::kOneFrame) {
       const float on = z > 0.0f ? 1.0f : 0.0f;
       unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
@@ -142,23 +145,31 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
     for (int c = 0; c < 5; ++c) p.half_moments[c][h] = moments[c];
 }
 
-// The whole downsample at texel (hx, hy), for a launcher that runs one thread per texel.
-template <BlockMoments kMoments>
-BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+// Calls f(lights, moments) with p.lights and p.moments as integral constants: the one dispatch
+// of the downsample's switches, for every launcher.
+template <typename F>
+BOUNCE_HD BOUNCE_DENOISE_INLINE void with_downsample_switches(const HalfDownsample& p, const F& f) {
+  auto with_moments = [&](auto lights) {
+    switch (p.moments) {
+      case BlockMoments::kNone:
+        return f(lights, std::integral_constant<BlockMoments, BlockMoments::kNone>{});
+      case BlockMoments::kOneFrame:
+        return f(lights, std::integral_constant<BlockMoments, BlockMoments::kOneFrame>{});
+      case BlockMoments::kHistory:
+        return f(lights, std::integral_constant<BlockMoments, BlockMoments::kHistory>{});
+    }
+  };
   if (p.lights == 2)
-    downsample_pixel<true, 2, kMoments>(p, hx, hy);
+    with_moments(std::integral_constant<int, 2>{});
   else
-    downsample_pixel<true, 1, kMoments>(p, hx, hy);
+    with_moments(std::integral_constant<int, 1>{});
 }
+
+// The whole downsample at texel (hx, hy), for a launcher that runs one thread per texel.
 BOUNCE_HD inline void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
-  switch (p.moments) {
-    case BlockMoments::kNone:
-      return downsample_pixel<BlockMoments::kNone>(p, hx, hy);
-    case BlockMoments::kOneFrame:
-      return downsample_pixel<BlockMoments::kOneFrame>(p, hx, hy);
-    case BlockMoments::kHistory:
-      return downsample_pixel<BlockMoments::kHistory>(p, hx, hy);
-  }
+  with_downsample_switches(p, [&](auto lights, auto moments) {
+    downsample_pixel<true, decltype(lights)::value, decltype(moments)::value>(p, hx, hy);
+  });
 }
 
 struct HalfUpsample {

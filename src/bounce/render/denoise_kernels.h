@@ -117,6 +117,9 @@ struct HistoryPlanesT {
     for (int k = 0; k < 8; ++k) to.c[k] = c[k];
     return to;
   }
+  // The accumulated light of direct and of indirect light: the a-trous filter's input.
+  BOUNCE_HD RgbPlanesT<kConst> direct_light() const { return {c[0], c[1], c[2]}; }
+  BOUNCE_HD RgbPlanesT<kConst> indirect_light() const { return {c[4], c[5], c[6]}; }
   BOUNCE_HD HistoryTexel get(size_t i) const {
     return {vec4(c[0][i], c[1][i], c[2][i], c[3][i]), vec4(c[4][i], c[5][i], c[6][i], c[7][i])};
   }

@@ -189,17 +189,17 @@ struct HalfVarianceInputs {
 // here. With plan.half_variance the spatial variance is estimated here from `variance`'s
 // inputs, and base's variance planes are not read. With plan.upsample_remodulates the upsample
 // remodulates into `remodulate`'s images (kRest: `rest`; direct light from remodulate.direct
-// where it is not filtered here), and returns true: nothing is left to remodulate.
+// where it is not filtered here), and nothing is left to remodulate.
 // The backend runs the passes: downsample(HalfDownsample), half_variance(HalfVariancePass),
 // depth_slope(depth, w, h, out), atrous(pass, both, variance), upsample(HalfUpsample).
 template <typename Backend>
-bool filter_half(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
+void filter_half(const Backend& backend, const AtrousPass& base, const AtrousPlan& plan,
                  const HalfPlanes& half, const HalfVarianceInputs& variance,
                  const RemodulatePass& remodulate, bool rest, ConstRgbPlanes& light_d,
                  ConstRgbPlanes& light_i) {
   const int nd = plan.direct_half ? plan.direct_iterations : 0;
   const int ni = plan.half ? plan.indirect_iterations : 0;
-  if (nd == 0 && ni == 0) return false;
+  if (nd == 0 && ni == 0) return;
   // Slot of each light filtered here (direct first), and its full-resolution input.
   const AtrousLight* inputs[kHalfMaxLights] = {};
   int lights = 0;
@@ -308,7 +308,6 @@ bool filter_half(const Backend& backend, const AtrousPass& base, const AtrousPla
   backend.upsample(up);
   if (slot_d >= 0) light_d = half.upsampled[slot_d];
   if (slot_i >= 0) light_i = half.upsampled[slot_i];
-  return plan.upsample_remodulates;
 }
 
 // The first pass over direct (and indirect) light: inputs, the guide planes and the sigmas;

@@ -166,8 +166,8 @@ BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec4& color
 // clipped to this frame's neighbourhood when the world changed.
 BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  // Reprojection follows surfaces; at rest a pixel without one keeps averaging.
-  if (!p.s.history || (!p.g.hit(i) && p.s.reproject)) return Reprojected{};
+  // (Reprojection follows surfaces, reproject_moved; at rest a pixel without one keeps averaging.)
+  if (!p.s.history) return Reprojected{};
   Reprojected r = reproject(p, x, y, i);
   if (r.kept && p.s.clip) {
     const ColorBoxes boxes = neighbourhood(p, x, y);

@@ -87,9 +87,6 @@ struct VariancePass {
   float cap_indirect = 0.0f;
 };
 
-// The box estimate at pixel i from its box sums `s`: where the history is short (and there is a
-// surface), the variance of the box's moments divided by the frames averaged replaces the
-// pixel's own; elsewhere the pixel keeps it. Branch-free, so a row loop vectorises.
 // The luminance variances of the moments of a box (box_moments' sums `s`): direct, indirect.
 BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moment_variances(const float s[5], float& var_d,
                                                           float& var_i) {
@@ -99,14 +96,26 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moment_variances(const float s[5], floa
   var_i = glm::max(m2_i - m1_i * m1_i, 0.0f);
 }
 
+// The frames a pixel's estimate averages, of direct and of indirect light (the latter capped for
+// a technique that accumulates indirect light itself), from its history length.
+BOUNCE_HD BOUNCE_DENOISE_INLINE void averaged_frames(float length, float cap_indirect,
+                                                     float& frames_d, float& frames_i) {
+  frames_d = length + 1.0f;
+  frames_i = glm::min(frames_d, cap_indirect + 1.0f);
+}
+
+// The box estimate at pixel i from its box sums `s`: where the history is short (and there is a
+// surface), the variance of the box's moments divided by the frames averaged replaces the
+// pixel's own; elsewhere the pixel keeps it. Branch-free, so a row loop vectorises.
 BOUNCE_HD BOUNCE_DENOISE_INLINE void box_variance(const VariancePass& p, size_t i,
                                                   const float s[5]) {
-  const float frames = p.length[i] + 1.0f;
+  float frames, frames_i;
+  averaged_frames(p.length[i], p.cap_indirect, frames, frames_i);
   const bool short_history = (frames < kShortHistory) & (p.depth[i] > 0.0f);
   float box_d, box_i;
   box_moment_variances(s, box_d, box_i);
   const float var_d = box_d / frames;
-  const float var_i = box_i / glm::min(frames, p.cap_indirect + 1.0f);
+  const float var_i = box_i / frames_i;
   p.var_direct[i] = short_history ? var_d : p.var_direct[i];
   p.var_indirect[i] = short_history ? var_i : p.var_indirect[i];
 }
@@ -131,15 +140,6 @@ BOUNCE_HD inline void spatial_variance_pixel(const VariancePass& p, int x, int y
 // once. The box is kHalfVarianceBox texels in radius, (4r + 2) pixels across.
 
 inline constexpr int kHalfVarianceBox = 2;
-
-// The frames a pixel's estimate averages, of direct and of indirect light (box_variance's
-// divisors), as their reciprocals.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void inverse_frames(float length, float cap_indirect, float& inv_d,
-                                                    float& inv_i) {
-  const float frames = length + 1.0f;
-  inv_d = 1.0f / frames;
-  inv_i = 1.0f / glm::min(frames, cap_indirect + 1.0f);
-}
 
 struct HalfVariancePass {
   const float* moments[5] = {};  // the blocks' moment sums (box_moments' order)

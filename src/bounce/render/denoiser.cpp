@@ -331,14 +331,9 @@ struct CpuPasses {
     compute_depth_slope(depth, w, h, slope);
   }
   void downsample(const denoise::HalfDownsample& p, int half_height) const {
-    switch (p.moments) {
-      case denoise::BlockMoments::kNone:
-        return downsample_rows<denoise::BlockMoments::kNone>(p, half_height);
-      case denoise::BlockMoments::kOneFrame:
-        return downsample_rows<denoise::BlockMoments::kOneFrame>(p, half_height);
-      case denoise::BlockMoments::kHistory:
-        return downsample_rows<denoise::BlockMoments::kHistory>(p, half_height);
-    }
+    denoise::with_downsample_switches(p, [&](auto lights, auto moments) {
+      downsample_rows<decltype(lights)::value, decltype(moments)::value>(p, half_height);
+    });
   }
   // The box summed separably: row sums into half_rows, then per row the column sums into a row
   // buffer and half_box_variance over it.
@@ -375,11 +370,6 @@ struct CpuPasses {
     denoise::with_upsample_store(p, [&](const auto& store) { upsample_rows(p, store); });
   }
 
-  template <denoise::BlockMoments kMoments>
-  static void downsample_rows(const denoise::HalfDownsample& p, int half_height) {
-    p.lights == 2 ? downsample_rows<2, kMoments>(p, half_height)
-                  : downsample_rows<1, kMoments>(p, half_height);
-  }
   template <int kLights, denoise::BlockMoments kMoments>
   static void downsample_rows(const denoise::HalfDownsample& down, int half_height) {
     const int hw = down.half_width;
@@ -668,8 +658,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   b.history_frames = state == HistoryState::kReset ? 0 : denoise::next_count(b.history_frames);
 
   // The filter's input: the accumulated demodulated light, the history's.
-  ConstRgbPlanes light_d = std::as_const(b.history).rgb(0);
-  ConstRgbPlanes light_i = std::as_const(b.history).rgb(4);
+  const denoise::HistoryPlanes history = history_planes(b.history);
+  ConstRgbPlanes light_d = history.direct_light();
+  ConstRgbPlanes light_i = history.indirect_light();
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const denoise::AtrousPlan plan =
       denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames, b.history_frames);
@@ -691,7 +682,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
         b.row_box[size_t(y)] = needed;
       }
       denoise::BoxPass box;
-      box.history = history_planes(b.history);
+      box.history = history;
       box.depth = depth;
       for (int k = 0; k < 5; ++k) box.sums[k] = b.box[k];
       box.width = w;
@@ -731,21 +722,20 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       gbuffer.view(), {std::as_const(b.rest).rgb(0), std::as_const(b.rest).rgb(3)},
       light_d,        light_i,
       direct.data(),  indirect ? indirect->data() : nullptr};
-  bool remodulated = false;
   if (plan.direct_half || plan.half) {
     // (Both lights at half resolution count as the direct stage, as both at full resolution do;
     // with every light there the upsample remodulates.)
     ScopedStage stage(frame.times, plan.direct_half ? "denoise/atrous" : "denoise/indirect");
-    const denoise::HalfVarianceInputs variance{history_planes(b.history), history_length_.data(),
-                                               cap_indirect, b.history_frames == 0};
-    remodulated = denoise::filter_half(passes, base, plan, b.half_planes(), variance, remodulate,
-                                       rest, light_d, light_i);
+    const denoise::HalfVarianceInputs variance{history, history_length_.data(), cap_indirect,
+                                               b.history_frames == 0};
+    denoise::filter_half(passes, base, plan, b.half_planes(), variance, remodulate, rest, light_d,
+                         light_i);
   }
   if (plan.indirect_full) {
     ScopedStage stage(frame.times, "denoise/indirect");
     denoise::filter_indirect_full(passes, base, plan, b.full_planes(), light_i);
   }
-  if (!remodulated) {
+  if (!plan.upsample_remodulates) {
     ScopedStage stage(frame.times, "denoise/remodulate");
     remodulate.direct = light_d;
     remodulate.indirect = light_i;
