@@ -67,7 +67,7 @@ struct Reprojected {
 // in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
 // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
 // depth_tolerance relative, normals within normal_tolerance). Branch-free: taps outside the
-// image read its first pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
+// image read its nearest pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
 // still leaves the CPU's row loop scalar: it makes the taps' loads masked gathers, which it
 // only emulates for this target and cannot mask.)
 BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
@@ -89,7 +89,10 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& 
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     const int qx = x0 + dx, qy = y0 + dy;
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
-    const size_t q = inside ? size_t(qy) * size_t(p.prev_width) + size_t(qx) : 0;
+    // The nearest texel inside: every tap reads the image (nvcc 13's code for the select of
+    // texel 0 read far outside it), and one outside weighs nothing.
+    const size_t q = size_t(glm::clamp(qy, 0, p.prev_height - 1)) * size_t(p.prev_width) +
+                     size_t(glm::clamp(qx, 0, p.prev_width - 1));
     const bool same_object = p.prev_surface.object[q] == object;
     const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= dz_max;
     const bool near_normal = glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance;
