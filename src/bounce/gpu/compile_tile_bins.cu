@@ -1,5 +1,5 @@
 // nvcc check of techniques/tiled/tile_bins_kernels.h: frusta, photon tile ranges and row entries,
-// and the per-row count and insert.
+// and the per-tile count and insert (the GPU's; the CPU walks rows).
 #include "bounce/techniques/tiled/tile_bins_kernels.h"
 
 namespace bounce {
@@ -28,14 +28,14 @@ __global__ void check_row_starts(const uint32_t* sorted_rows, uint32_t entries, 
   if (r <= rows) starts[r] = row_start(sorted_rows, entries, r);
 }
 
-__global__ void check_row_overlaps(TileRowsView rows, const uint32_t* offsets, uint32_t* counts,
-                                   uint32_t* indices) {
-  const int ty = int(blockIdx.x * blockDim.x + threadIdx.x);
-  if (ty >= rows.grid.tiles_y) return;
+__global__ void check_tile_overlaps(TileRowsView rows, const uint32_t* offsets, uint32_t* counts,
+                                    uint32_t* indices) {
+  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= rows.grid.count()) return;
   if (offsets)
-    insert_row_overlaps(rows, ty, offsets, counts, indices);
+    insert_tile_overlaps(rows, t, offsets, indices);
   else
-    count_row_overlaps(rows, ty, counts);
+    counts[t] = count_tile_overlaps(rows, t);
 }
 
 }  // namespace bounce

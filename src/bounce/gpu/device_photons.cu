@@ -24,6 +24,34 @@ PhotonView DevicePhotons::view() {
   return v;
 }
 
+void join_photons(std::span<const DevicePhotons> parts, DevicePhotons& out) {
+  uint32_t total = 0;
+  for (const DevicePhotons& p : parts) total += p.count;
+  out.position.resize(total);
+  out.flux.resize(total);
+  out.incident.resize(total);
+  out.normal.resize(total);
+  out.incident_dir.resize(total);
+  out.normal_dir.resize(total);
+  out.count = total;
+  out.has_clearance = false;
+  uint32_t at = 0;
+  const auto copy = [](auto& to, const auto& from, uint32_t offset, uint32_t n) {
+    if (n)
+      BOUNCE_CUDA(cudaMemcpyAsync(to.data() + offset, from.data(), n * sizeof(*from.data()),
+                                  cudaMemcpyDeviceToDevice));
+  };
+  for (const DevicePhotons& p : parts) {
+    copy(out.position, p.position, at, p.count);
+    copy(out.flux, p.flux, at, p.count);
+    copy(out.incident, p.incident, at, p.count);
+    copy(out.normal, p.normal, at, p.count);
+    copy(out.incident_dir, p.incident_dir, at, p.count);
+    copy(out.normal_dir, p.normal_dir, at, p.count);
+    at += p.count;
+  }
+}
+
 DevicePhotonStats DevicePhotonTracer::trace(const DeviceScene& scene,
                                             const PhotonTraceSettings& settings,
                                             DevicePhotons& out) {
@@ -126,22 +154,16 @@ void DeviceTileBins::build(const ConstGBufferView& g, const CameraRays& camera,
   }
   const TileRowsView rows{
       frusta_.data(), tx, row_start_.data(), row_photons_.data(), positions, camera, radius, grid};
-  // One thread per row of tiles walks its photons in order: count, scan over tiles, insert.
+  // One thread per tile walks its row's photons in order: count, scan over tiles, insert.
   counts_.resize(tiles);
-  counts_.fill_zero();
   uint32_t* counts = counts_.data();
-  launch(
-      grid.tiles_y, [=] __device__(uint32_t r) { count_row_overlaps(rows, int(r), counts); }, 32);
+  launch(tiles, [=] __device__(uint32_t t) { counts[t] = count_tile_overlaps(rows, t); });
   offsets_.resize(tiles + 1);
   const uint32_t total = device_exclusive_scan(counts, offsets_.data(), tiles, scratch_);
   indices_.resize(total);
-  counts_.fill_zero();
   const uint32_t* offsets = offsets_.data();
   uint32_t* indices = indices_.data();
-  launch(
-      grid.tiles_y,
-      [=] __device__(uint32_t r) { insert_row_overlaps(rows, int(r), offsets, counts, indices); },
-      32);
+  launch(tiles, [=] __device__(uint32_t t) { insert_tile_overlaps(rows, t, offsets, indices); });
 }
 
 void DeviceHashGrid::build(const DevicePhotons& photons, float radius) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "bounce/gpu/device_buffer.h"
 #include "bounce/gpu/device_primitives.h"
@@ -29,6 +30,10 @@ struct DevicePhotons {
 
   PhotonView view();
 };
+
+// The photons of `parts` one after another in `out` (without clearances: they are per photon, so
+// the joined photons' are computed after).
+void join_photons(std::span<const DevicePhotons> parts, DevicePhotons& out);
 
 struct DevicePhotonStats {
   uint64_t paths = 0, stored = 0, rays = 0;

@@ -3,10 +3,14 @@
 // gather with edge re-estimation, progressive passes at rest) from the same kernel bodies, with
 // the settings read from the host technique's parameters.
 //
-// Deviation (issue 13 notes): passes are averaged while nothing changes, as on the CPU, but the
-// kept passes that the CPU gathers again after a camera move are not kept here yet: a camera
-// move restarts the average at the full radius.
+// Deviation (issue 13 notes): passes are averaged while nothing changes, as on the CPU, and the
+// frames after a restart trace restart_passes passes each, as on the CPU; but the kept passes
+// that the CPU gathers again after a camera move are not kept here yet: a camera move restarts
+// the average at the full radius (without the boost, which the CPU gives restarts of the world).
 #pragma once
+
+#include <cstdint>
+#include <vector>
 
 #include "bounce/gpu/device_buffer.h"
 #include "bounce/gpu/device_photons.h"
@@ -31,7 +35,11 @@ class DeviceTiled {
   TiledSettings settings_;
   float diagonal_ = 1.0f, full_radius_ = 0.0f;
   uint32_t passes_ = 0;
-  DevicePhotons photons_;
+  uint32_t frame_passes_ = 1;  // traced by this frame's prepare (TiledPhotonMapping's)
+  uint32_t frames_since_restart_ = UINT32_MAX;
+  uint32_t boosted_frames_left_ = 0;
+  DevicePhotons photons_;            // this frame's passes, gathered together
+  std::vector<DevicePhotons> parts_;  // a boosted frame's passes, before they are joined
   DevicePhotonTracer tracer_;
   DeviceTileBins bins_;
   DeviceHashGrid grid_;

@@ -134,19 +134,49 @@ struct TileRowsView {
   TileGrid grid;
 };
 
+// Whether photon i's sphere reaches tile frustum f.
+BOUNCE_HD inline bool photon_reaches(const TileRowsView& v, const TileFrustum& f, uint32_t i) {
+  const vec3 p = v.positions[i] - v.camera.origin;
+  return tile_overlaps(f, p, glm::dot(p, v.camera.forward), v.radius);
+}
+
 // Calls on_overlap(t, i) for every tile t of row ty that photon i's sphere reaches, photons in
 // order, tiles left to right.
 template <typename OnOverlap>
 BOUNCE_HD void for_each_row_overlap(const TileRowsView& v, int ty, OnOverlap&& on_overlap) {
   for (uint32_t r = v.row_start[ty]; r < v.row_start[ty + 1]; ++r) {
     const uint32_t i = v.row_photons[r];
-    const vec3 p = v.positions[i] - v.camera.origin;
-    const float depth = glm::dot(p, v.camera.forward);
     for (int tx = v.photon_tiles_x[i].x; tx <= v.photon_tiles_x[i].y; ++tx) {
       const size_t t = size_t(ty) * size_t(v.grid.tiles_x) + size_t(tx);
-      if (tile_overlaps(v.frusta[t], p, depth, v.radius)) on_overlap(t, i);
+      if (photon_reaches(v, v.frusta[t], i)) on_overlap(t, i);
     }
   }
+}
+
+// The same lists one tile at a time, for a GPU thread per tile (a thread per row leaves a
+// 1080p frame's 135 rows to 135 threads, serial work of milliseconds): tile t walks its row's
+// photons in order and calls on_overlap(i) for those that reach it.
+template <typename OnOverlap>
+BOUNCE_HD void for_each_tile_overlap(const TileRowsView& v, size_t t, OnOverlap&& on_overlap) {
+  const int ty = int(t / size_t(v.grid.tiles_x)), tx = int(t % size_t(v.grid.tiles_x));
+  const TileFrustum f = v.frusta[t];
+  for (uint32_t r = v.row_start[ty]; r < v.row_start[ty + 1]; ++r) {
+    const uint32_t i = v.row_photons[r];
+    const ivec2 range = v.photon_tiles_x[i];
+    if (tx >= range.x && tx <= range.y && photon_reaches(v, f, i)) on_overlap(i);
+  }
+}
+// The number of photons of tile t.
+BOUNCE_HD inline uint32_t count_tile_overlaps(const TileRowsView& v, size_t t) {
+  uint32_t count = 0;
+  for_each_tile_overlap(v, t, [&](uint32_t) { ++count; });
+  return count;
+}
+// Tile t's photons at its offset, in photon order.
+BOUNCE_HD inline void insert_tile_overlaps(const TileRowsView& v, size_t t, const uint32_t* offsets,
+                                           uint32_t* indices) {
+  uint32_t* out = indices + offsets[t];
+  for_each_tile_overlap(v, t, [&](uint32_t i) { *out++ = i; });
 }
 
 // Count: the number of photons of each tile in row ty (counts zeroed before).
