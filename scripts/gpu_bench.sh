@@ -16,7 +16,7 @@ echo "== GPU tests"
 "$build/tests/bounce_gpu_tests" 2>&1 | tee "$out/gpu_tests.txt" | tail -25
 
 echo "== BVH ray throughput on the GPU"
-"$build/bench/bounce_gpu_microbench" --benchmark_min_time=0.5s 2>&1 | tee "$out/gpu_rays.txt"
+"$build/bench/bounce_gpu_microbench" --benchmark_min_time=0.5 2>&1 | tee "$out/gpu_rays.txt"
 
 echo "== Seed 000's setting: Cornell 1920x1080, 1,000 photon paths, one bounce"
 "$bounce" bench cornell --device cuda --no-denoise -W 1920 -H 1080 --photons 1000 --bounces 1 \

@@ -107,6 +107,7 @@ void run_bench(BenchOptions o) {
   configure_pipeline(o.frame, renderer);
   FrameSettings settings = o.frame.settings();
   settings.accumulate = o.accumulate;
+  settings.host_color = false;  // a frame's work ends with the displayed (tone-mapped) image
   int frame_number = 0;
   MemorySamples memory;
   const auto next_frame = [&]() -> const Frame& {

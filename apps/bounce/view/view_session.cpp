@@ -129,6 +129,7 @@ const Frame& ViewSession::render(int out_w, int out_h, double dt) {
   moving_ = renderer_->next_change(camera, realtime_frame_settings(frame, true), true).any();
   FrameSettings settings = realtime_frame_settings(frame, moving_);
   settings.view = view_;
+  settings.host_color = false;  // the window shows `ldr`
   const float scale = fixed_scale_ ? *fixed_scale_ : scaler_.update(last_frame_ms_, moving_);
   settings.width = std::max(1, int(std::lround(out_w * scale)));
   settings.height = std::max(1, int(std::lround(out_h * scale)));

@@ -191,7 +191,7 @@ void run_viewer(const ViewOptions& options) {
     glfwGetFramebufferSize(window.get(), &fb_w, &fb_h);
     if (fb_w > 0 && fb_h > 0) {
       const Frame& f = session.render(fb_w, fb_h, dt);
-      display.upload(f.ldr.data(), f.color.width(), f.color.height());
+      display.upload(f.ldr.data(), f.width, f.height);
       display.draw(fb_w, fb_h);
       if (show_ui) draw_panel(session, panel);
     }
@@ -213,7 +213,7 @@ void run_viewer(const ViewOptions& options) {
   }
   const Frame& f = session.frame();
   fmt::print("{} frames; last frame {:.1f} ms at {}x{}\n", session.frames_rendered(),
-             f.times.total_ms(), f.color.width(), f.color.height());
+             f.times.total_ms(), f.width, f.height);
 }
 
 }  // namespace bounce::app

@@ -205,10 +205,17 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   }
   events_.end();
 
-  // The image back to the host: the one transfer of every frame.
+  // The image back to the host: the one transfer of every frame, the linear colour only when
+  // asked (four times the bytes of the tone-mapped image).
   events_.begin("download");
-  if (f.color.width() != w || f.color.height() != h) f.color = Image(w, h);
-  color_.download(f.color.pixels().data(), n);
+  if (settings.host_color) {
+    if (f.color.width() != w || f.color.height() != h) f.color = Image(w, h);
+    color_.download(f.color.pixels().data(), n);
+  } else {
+    f.color = Image();
+  }
+  f.width = w;
+  f.height = h;
   f.ldr.resize(3 * n);
   ldr_.download(f.ldr.data(), 3 * n);
   events_.end();

@@ -219,6 +219,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "tonemap");
     tonemap_srgb8(f.color, settings.exposure_ev, f.ldr);
   }
+  f.width = w;
+  f.height = h;
   ++frame_index_;
   return f;
 }

@@ -45,6 +45,9 @@ struct FrameSettings {
   // One shadow ray per pixel for all its light samples, chosen by their unshadowed contribution
   // (direct_light_pixel): the real-time setting for scenes with several lights.
   bool one_shadow_ray = false;
+  // Whether Frame::color (linear) must reach the host. The CPU has it anyway; a GPU frame copies
+  // it back only when asked (bench and the viewer show `ldr`, a quarter of the bytes).
+  bool host_color = true;
 
   bool operator==(const FrameSettings&) const = default;
 };
@@ -61,8 +64,9 @@ struct Frame {
   GBuffer gbuffer;
   Image direct;    // direct light plus emitters seen directly (averaged at rest, or denoised)
   Image indirect;  // the technique's indirect radiance (averaged at rest, or denoised)
-  Image color;     // linear composite
+  Image color;     // linear composite (empty from a GPU frame unless FrameSettings::host_color)
   std::vector<uint8_t> ldr;  // tone-mapped sRGB, 3 bytes per pixel
+  int width = 0, height = 0;  // the frame's size (ldr's)
   int frames_averaged = 1;   // frames that went into this one at rest (1 after any change)
   SceneChange change;        // what changed since the previous frame
   StageTimes times;
