@@ -171,8 +171,7 @@ void draw_panel(ViewSession& session, PanelState& state) {
   const Frame& f = session.frame();
   const Scene& scene = session.scene();
   ImGui::Text("%s: %zu triangles", scene.source.c_str(), scene.triangle_count());
-  ImGui::Text("%dx%d internal, %s", f.width, f.height,
-              session.moving() ? "moving" : "at rest");
+  ImGui::Text("%dx%d internal, %s", f.width, f.height, session.moving() ? "moving" : "at rest");
   ImGui::Text("%d frame(s) averaged at rest", f.frames_averaged);
 
   if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) timing_section(session);

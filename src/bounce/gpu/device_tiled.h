@@ -38,7 +38,7 @@ class DeviceTiled {
   uint32_t frame_passes_ = 1;  // traced by this frame's prepare (TiledPhotonMapping's)
   uint32_t frames_since_restart_ = UINT32_MAX;
   uint32_t boosted_frames_left_ = 0;
-  DevicePhotons photons_;            // this frame's passes, gathered together
+  DevicePhotons photons_;             // this frame's passes, gathered together
   std::vector<DevicePhotons> parts_;  // a boosted frame's passes, before they are joined
   DevicePhotonTracer tracer_;
   DeviceTileBins bins_;
