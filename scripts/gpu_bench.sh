@@ -22,9 +22,11 @@ echo "== Seed 000's setting: Cornell 1920x1080, 1,000 photon paths, one bounce"
 "$bounce" bench cornell --device cuda --no-denoise -W 1920 -H 1080 --photons 1000 --bounces 1 \
   --warmup 10 -n 200 2>&1 | tee "$out/frame_seed000.txt"
 
-echo "== 1920x1080, 1M photon paths, multi-bounce, hash-grid gather"
+# The radius: 1% of the diagonal. The default 3%, chosen for 2,000 paths, makes each gather point
+# read thousands of photons for no better image (docs/benchmarks.md, "1M photon paths").
+echo "== 1920x1080, 1M photon paths, multi-bounce, hash-grid gather, radius 1%"
 "$bounce" bench cornell --device cuda --no-denoise -W 1920 -H 1080 --photons 1000000 \
-  --bounces -1 --gather grid --warmup 5 -n 50 2>&1 | tee "$out/frame_1m.txt"
+  --bounces -1 --gather grid --radius 1% --warmup 5 -n 50 2>&1 | tee "$out/frame_1m.txt"
 
 echo "== The real-time frame at 512x512 on both backends (tiled, 2,000 paths): cost"
 for device in cuda cpu; do

@@ -48,8 +48,7 @@ BOUNCE_HD inline float pick(float x, float y, float z, int k) {
 struct BvhRay {
   float org[3];
   float inv[3];    // 1 / direction, a zero component replaced by a tiny one (no 0 * inf)
-  int near[3];     // per axis, where in a child's box[] the plane the ray enters through is
-  int far[3];      // ... and the one it leaves through
+  bool neg[3];     // per axis, whether the ray enters a box through its high plane
   int kx, ky, kz;  // the watertight test's axes: kz the direction's largest component
   float sx, sy, sz;
 };
@@ -63,8 +62,7 @@ BOUNCE_HD inline BvhRay make_bvh_ray(const Ray& ray) {
   for (int k = 0; k < 3; ++k) {
     const float dk = abs_f(d[k]) > 1e-30f ? d[k] : (d[k] < 0.0f ? -1e-30f : 1e-30f);
     r.inv[k] = 1.0f / dk;
-    r.near[k] = r.inv[k] < 0.0f ? k + 3 : k;
-    r.far[k] = r.inv[k] < 0.0f ? k : k + 3;
+    r.neg[k] = r.inv[k] < 0.0f;
   }
   const float ax = abs_f(d[0]), ay = abs_f(d[1]), az = abs_f(d[2]);
   r.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
@@ -88,15 +86,17 @@ BOUNCE_HD inline float shear(float p, float s, float z) {
   return float(double(p) - double(s) * double(z));
 }
 
-// Whether the ray enters the box within [tmin, tmax]; `entry` is where it does.
+// Whether the ray enters the box within [tmin, tmax]; `entry` is where it does. The planes are
+// picked by selects, not indices: a node copied into registers stays there (an indexed array
+// would live in GPU local memory).
 BOUNCE_HD inline bool hit_box(const BvhRay& r, const float* box, float tmin, float tmax,
                               float& entry) {
-  const float x0 = (box[r.near[0]] - r.org[0]) * r.inv[0];
-  const float y0 = (box[r.near[1]] - r.org[1]) * r.inv[1];
-  const float z0 = (box[r.near[2]] - r.org[2]) * r.inv[2];
-  const float x1 = (box[r.far[0]] - r.org[0]) * r.inv[0];
-  const float y1 = (box[r.far[1]] - r.org[1]) * r.inv[1];
-  const float z1 = (box[r.far[2]] - r.org[2]) * r.inv[2];
+  const float x0 = ((r.neg[0] ? box[3] : box[0]) - r.org[0]) * r.inv[0];
+  const float y0 = ((r.neg[1] ? box[4] : box[1]) - r.org[1]) * r.inv[1];
+  const float z0 = ((r.neg[2] ? box[5] : box[2]) - r.org[2]) * r.inv[2];
+  const float x1 = ((r.neg[0] ? box[0] : box[3]) - r.org[0]) * r.inv[0];
+  const float y1 = ((r.neg[1] ? box[1] : box[4]) - r.org[1]) * r.inv[1];
+  const float z1 = ((r.neg[2] ? box[2] : box[5]) - r.org[2]) * r.inv[2];
   entry = max_f(max_f(x0, y0), max_f(z0, tmin));
   const float exit = min_f(min_f(min_f(x1, y1), z1) * 1.0000004f, tmax);
   return entry <= exit;
@@ -134,8 +134,37 @@ BOUNCE_HD inline bool hit_triangle(const BvhRay& r, const BvhTriangle& tri, floa
   return true;
 }
 
+// A node and a triangle as the traversal reads them: on the device in 16-byte loads through the
+// read-only data cache (both are 16-byte aligned and never written while rays run).
+BOUNCE_HD inline BvhNode load_node(const BvhNode* nodes, uint32_t i) {
+#ifdef __CUDA_ARCH__
+  const float4* p = reinterpret_cast<const float4*>(nodes + i);
+  const float4 a = __ldg(p), b = __ldg(p + 1), c = __ldg(p + 2);
+  const uint4 d = __ldg(reinterpret_cast<const uint4*>(p + 3));
+  BvhNode n;
+  n.box[0][0] = a.x, n.box[0][1] = a.y, n.box[0][2] = a.z, n.box[0][3] = a.w;
+  n.box[0][4] = b.x, n.box[0][5] = b.y, n.box[1][0] = b.z, n.box[1][1] = b.w;
+  n.box[1][2] = c.x, n.box[1][3] = c.y, n.box[1][4] = c.z, n.box[1][5] = c.w;
+  n.child[0] = d.x, n.child[1] = d.y, n.count[0] = d.z, n.count[1] = d.w;
+  return n;
+#else
+  return nodes[i];
+#endif
+}
+BOUNCE_HD inline BvhTriangle load_triangle(const BvhTriangle* triangles, uint32_t k) {
+#ifdef __CUDA_ARCH__
+  const float4* p = reinterpret_cast<const float4*>(triangles + k);
+  const float4 a = __ldg(p), b = __ldg(p + 1), c = __ldg(p + 2);
+  return {vec4(a.x, a.y, a.z, a.w), vec4(b.x, b.y, b.z, b.w), vec4(c.x, c.y, c.z, c.w)};
+#else
+  return triangles[k];
+#endif
+}
+
 // Walks the tree. kAnyHit: returns at the first hit in range. Otherwise fills `hit` with the
-// closest and returns whether there was one.
+// closest and returns whether there was one. (Written as a resumable walk of one node per step,
+// the same traversal traced random rays through cubes:10000 22% faster on an H100, but shadow rays
+// 14% slower, and a 1080p frame's G-buffer 37% slower: not taken.)
 template <bool kAnyHit>
 BOUNCE_HD inline bool traverse(const BvhView& bvh, const Ray& ray, Hit& hit) {
   if (bvh.node_count == 0) return false;
@@ -147,21 +176,24 @@ BOUNCE_HD inline bool traverse(const BvhView& bvh, const Ray& ray, Hit& hit) {
   int depth = 0;
   uint32_t node = 0;
   for (;;) {
-    const BvhNode& n = bvh.nodes[node];
-    float entry[2];
-    const bool in0 = hit_box(r, n.box[0], ray.tmin, tmax, entry[0]);
-    const bool in1 = hit_box(r, n.box[1], ray.tmin, tmax, entry[1]);
-    const int first = in1 && (!in0 || entry[1] < entry[0]) ? 1 : 0;
+    const BvhNode n = load_node(bvh.nodes, node);
+    float entry0, entry1;
+    const bool in0 = hit_box(r, n.box[0], ray.tmin, tmax, entry0);
+    const bool in1 = hit_box(r, n.box[1], ray.tmin, tmax, entry1);
+    const bool second_first = in1 && (!in0 || entry1 < entry0);
     uint32_t next = Hit::kNone;
     for (int i = 0; i < 2; ++i) {
-      const int c = i == 0 ? first : 1 - first;
-      if (!(c == 0 ? in0 : in1) || entry[c] > tmax) continue;  // a leaf may have moved tmax
-      const uint32_t child = n.child[c];
+      // Child c, the nearer first, by selects (see hit_box).
+      const bool c1 = (i == 0) == second_first;
+      const float entry = c1 ? entry1 : entry0;
+      if (!(c1 ? in1 : in0) || entry > tmax) continue;  // a leaf may have moved tmax
+      const uint32_t child = c1 ? n.child[1] : n.child[0];
       if (child & BvhNode::kLeaf) {
-        const uint32_t begin = child & ~BvhNode::kLeaf, end = begin + n.count[c];
+        const uint32_t begin = child & ~BvhNode::kLeaf,
+                       end = begin + (c1 ? n.count[1] : n.count[0]);
         for (uint32_t k = begin; k < end; ++k) {
           float t, u, v;
-          if (!hit_triangle(r, bvh.triangles[k], ray.tmin, tmax, t, u, v)) continue;
+          if (!hit_triangle(r, load_triangle(bvh.triangles, k), ray.tmin, tmax, t, u, v)) continue;
           if (bvh.cutouts.mesh_count > 0 &&
               bvh.cutouts.passes(bvh.ids[k].mesh, bvh.ids[k].triangle, u, v))
             continue;  // a hole in an alpha-masked material
