@@ -24,17 +24,21 @@ PhotonView DevicePhotons::view() {
   return v;
 }
 
+void DevicePhotons::resize(uint32_t n) {
+  position.resize(n);
+  flux.resize(n);
+  incident.resize(n);
+  normal.resize(n);
+  incident_dir.resize(n);
+  normal_dir.resize(n);
+  count = n;
+  has_clearance = false;
+}
+
 void join_photons(std::span<const DevicePhotons> parts, DevicePhotons& out) {
   uint32_t total = 0;
   for (const DevicePhotons& p : parts) total += p.count;
-  out.position.resize(total);
-  out.flux.resize(total);
-  out.incident.resize(total);
-  out.normal.resize(total);
-  out.incident_dir.resize(total);
-  out.normal_dir.resize(total);
-  out.count = total;
-  out.has_clearance = false;
+  out.resize(total);
   uint32_t at = 0;
   const auto copy = [](auto& to, const auto& from, uint32_t offset, uint32_t n) {
     if (n)
@@ -77,13 +81,7 @@ DevicePhotonStats DevicePhotonTracer::trace(const DeviceScene& scene,
   });
   const uint32_t total = device_exclusive_scan(counts, first_.data(), pass.paths, scratch_);
   stats.rays = 2 * device_sum(rays, pass.paths, scratch_);  // each path is traced twice
-  out.position.resize(total);
-  out.flux.resize(total);
-  out.incident.resize(total);
-  out.normal.resize(total);
-  out.incident_dir.resize(total);
-  out.normal_dir.resize(total);
-  out.count = total;
+  out.resize(total);
   const PhotonView pv = out.view();
   const uint32_t* first = first_.data();
   launch(pass.paths, [=] __device__(uint32_t i) {

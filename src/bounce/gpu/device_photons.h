@@ -28,6 +28,8 @@ struct DevicePhotons {
   uint32_t count = 0;
   bool has_clearance = false;
 
+  // Room for n photons (contents not kept when it grows), with no clearances yet.
+  void resize(uint32_t n);
   PhotonView view();
 };
 
