@@ -14,30 +14,16 @@ void DeviceTiled::prepare(const TiledSettings& settings, const DeviceScene& scen
   settings_ = settings;
   diagonal_ = std::max(scene.view().bounds.diagonal(), 1e-6f);
   full_radius_ = settings.radius > 0.0f ? settings.radius : settings.radius_rel * diagonal_;
-  // As TiledPhotonMapping::prepare: a restart of the world after a still period boosts the next
-  // restart_frames frames to restart_passes passes each. Camera moves restart the average here
-  // too (the deviation above), without the boost.
+  // As TiledPhotonMapping::prepare: the same boost after a restart of the world, the same
+  // passes. Camera moves restart the average here too (the deviation above), without the boost.
   const bool world_restart = !accumulate || change.world_changed();
-  if (world_restart) {
-    const uint32_t boost_frames = uint32_t(settings.restart_frames);
-    boosted_frames_left_ = accumulate && frames_since_restart_ >= boost_frames ? boost_frames : 0;
-    frames_since_restart_ = 0;
-  }
   if (world_restart || change.any()) passes_ = 0;
-  if (frames_since_restart_ < UINT32_MAX) ++frames_since_restart_;
-  frame_passes_ = 1;
-  if (boosted_frames_left_ > 0) {
-    --boosted_frames_left_;
-    frame_passes_ = uint32_t(std::clamp(settings.restart_passes, 1, settings.history_passes));
-  }
+  frame_passes_ =
+      boost_.frame_passes(settings, world_restart, accumulate, size_t(settings.history_passes));
   if (parts_.size() < frame_passes_) parts_.resize(frame_passes_);
   for (uint32_t k = 0; k < frame_passes_; ++k) {
-    // The CPU's sample numbers: the frame index, and far from any frame's for the extra passes.
-    PhotonTraceSettings ts;
-    ts.paths = uint32_t(settings.photons);
-    ts.max_bounces = settings.bounces;
-    ts.seed = uint32_t(settings.seed);
-    ts.pass = frame_index + k * 0x10000000u;
+    const PhotonTraceSettings ts =
+        TiledPhotonMapping::pass_trace_settings(settings, frame_index, k);
     const DevicePhotonStats stats =
         tracer_.trace(scene, ts, frame_passes_ == 1 ? photons_ : parts_[k]);
     counters.photon_paths += stats.paths;
@@ -55,12 +41,10 @@ void DeviceTiled::indirect(const DeviceScene& scene, const ConstGBufferView& g,
   const size_t n = g.size();
   // As TiledPhotonMapping::indirect: a frame's passes gathered together at the mean of their
   // discs, their summed flux the sum of their estimates.
-  const uint32_t before = passes_;
+  const bool first = passes_ == 0;
   passes_ += frame_passes_;
   const float radius =
-      frame_passes_ > 1
-          ? TiledPhotonMapping::range_radius(full_radius_, settings_.alpha, before + 1, passes_)
-          : TiledPhotonMapping::progressive_radius(full_radius_, settings_.alpha, passes_);
+      TiledPhotonMapping::frame_radius(full_radius_, settings_.alpha, frame_passes_, passes_);
   TiledGatherView gather;
   gather.g = g;
   gather.photons = photons_.view();
@@ -108,7 +92,6 @@ void DeviceTiled::indirect(const DeviceScene& scene, const ConstGBufferView& g,
   sum_.resize(n);
   vec3* sum = sum_.data();
   const vec3* pass = pass_.data();
-  const bool first = before == 0;
   const float inv = 1.0f / float(passes_);
   launch(n, [=] __device__(uint32_t i) {
     const vec3 s = first ? pass[i] : sum[i] + pass[i];

@@ -36,8 +36,7 @@ class DeviceTiled {
   float diagonal_ = 1.0f, full_radius_ = 0.0f;
   uint32_t passes_ = 0;
   uint32_t frame_passes_ = 1;  // traced by this frame's prepare (TiledPhotonMapping's)
-  uint32_t frames_since_restart_ = UINT32_MAX;
-  uint32_t boosted_frames_left_ = 0;
+  RestartBoost boost_;
   DevicePhotons photons_;             // this frame's passes, gathered together
   std::vector<DevicePhotons> parts_;  // a boosted frame's passes, before they are joined
   DevicePhotonTracer tracer_;

@@ -89,8 +89,8 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& 
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     const int qx = x0 + dx, qy = y0 + dy;
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
-    // The nearest texel inside: every tap reads the image (nvcc 13's code for the select of
-    // texel 0 read far outside it), and one outside weighs nothing.
+    // The nearest texel inside: every tap reads the image, and one outside weighs nothing. (With
+    // a select of texel 0 instead, compute-sanitizer caught the GPU reading far outside it.)
     const size_t q = size_t(glm::clamp(qy, 0, p.prev_height - 1)) * size_t(p.prev_width) +
                      size_t(glm::clamp(qx, 0, p.prev_width - 1));
     const bool same_object = p.prev_surface.object[q] == object;

@@ -134,10 +134,14 @@ struct TileRowsView {
   TileGrid grid;
 };
 
-// Whether photon i's sphere reaches tile frustum f.
-BOUNCE_HD inline bool photon_reaches(const TileRowsView& v, const TileFrustum& f, uint32_t i) {
+// Photon i as tile_overlaps tests it: relative to the eye, and at its view depth.
+struct PhotonInView {
+  vec3 p;
+  float depth;
+};
+BOUNCE_HD inline PhotonInView photon_in_view(const TileRowsView& v, uint32_t i) {
   const vec3 p = v.positions[i] - v.camera.origin;
-  return tile_overlaps(f, p, glm::dot(p, v.camera.forward), v.radius);
+  return {p, glm::dot(p, v.camera.forward)};
 }
 
 // Calls on_overlap(t, i) for every tile t of row ty that photon i's sphere reaches, photons in
@@ -146,9 +150,10 @@ template <typename OnOverlap>
 BOUNCE_HD void for_each_row_overlap(const TileRowsView& v, int ty, OnOverlap&& on_overlap) {
   for (uint32_t r = v.row_start[ty]; r < v.row_start[ty + 1]; ++r) {
     const uint32_t i = v.row_photons[r];
+    const PhotonInView q = photon_in_view(v, i);
     for (int tx = v.photon_tiles_x[i].x; tx <= v.photon_tiles_x[i].y; ++tx) {
       const size_t t = size_t(ty) * size_t(v.grid.tiles_x) + size_t(tx);
-      if (photon_reaches(v, v.frusta[t], i)) on_overlap(t, i);
+      if (tile_overlaps(v.frusta[t], q.p, q.depth, v.radius)) on_overlap(t, i);
     }
   }
 }
@@ -163,7 +168,9 @@ BOUNCE_HD void for_each_tile_overlap(const TileRowsView& v, size_t t, OnOverlap&
   for (uint32_t r = v.row_start[ty]; r < v.row_start[ty + 1]; ++r) {
     const uint32_t i = v.row_photons[r];
     const ivec2 range = v.photon_tiles_x[i];
-    if (tx >= range.x && tx <= range.y && photon_reaches(v, f, i)) on_overlap(i);
+    if (tx < range.x || tx > range.y) continue;
+    const PhotonInView q = photon_in_view(v, i);
+    if (tile_overlaps(f, q.p, q.depth, v.radius)) on_overlap(i);
   }
 }
 // The number of photons of tile t.

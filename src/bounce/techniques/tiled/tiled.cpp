@@ -94,6 +94,37 @@ float TiledPhotonMapping::progressive_radius(float full_radius, float alpha, uin
   return std::sqrt(radius2);
 }
 
+float TiledPhotonMapping::frame_radius(float full_radius, float alpha, uint32_t fresh,
+                                       uint32_t passes) {
+  return fresh > 1 ? range_radius(full_radius, alpha, passes - fresh + 1, passes)
+                   : progressive_radius(full_radius, alpha, passes);
+}
+
+PhotonTraceSettings TiledPhotonMapping::pass_trace_settings(const TiledSettings& s,
+                                                            uint32_t frame_index, uint32_t k) {
+  PhotonTraceSettings ts;
+  ts.paths = uint32_t(s.photons);
+  ts.max_bounces = s.bounces;
+  ts.seed = uint32_t(s.seed);
+  ts.pass = frame_index + k * 0x10000000u;
+  return ts;
+}
+
+uint32_t RestartBoost::frame_passes(const TiledSettings& s, bool restart, bool accumulate,
+                                    size_t capacity) {
+  if (restart) {
+    // A restart after a still period (the last one restart_frames or more frames ago) starts
+    // the boost; under continuous change no frame gets it.
+    const uint32_t boost_frames = uint32_t(s.restart_frames);
+    boosted_frames_left = accumulate && frames_since_restart >= boost_frames ? boost_frames : 0;
+    frames_since_restart = 0;
+  }
+  if (frames_since_restart < UINT32_MAX) ++frames_since_restart;
+  if (boosted_frames_left == 0) return 1;
+  --boosted_frames_left;
+  return uint32_t(std::clamp<size_t>(size_t(s.restart_passes), 1, capacity));
+}
+
 float TiledPhotonMapping::union_radius(float full_radius, float alpha, uint32_t passes) {
   return range_radius(full_radius, alpha, 1, passes);
 }
@@ -150,34 +181,17 @@ void TiledPhotonMapping::prepare(const PrepareContext& c) {
   diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
   full_radius_ = settings_.radius > 0.0f ? settings_.radius : settings_.radius_rel * diagonal_;
   const size_t capacity = size_t(settings_.history_passes);
-  if (!c.accumulate || c.change.world_changed() || history_.capacity() != capacity) {
-    // A restart after a still period (the last one restart_frames or more frames ago) starts
-    // the boost; under continuous change no frame gets it.
-    const uint32_t boost_frames = uint32_t(settings_.restart_frames);
-    boosted_frames_left_ = c.accumulate && frames_since_restart_ >= boost_frames ? boost_frames : 0;
-    frames_since_restart_ = 0;
+  const bool restart = !c.accumulate || c.change.world_changed() || history_.capacity() != capacity;
+  if (restart) {
     history_.reset(capacity);
     passes_ = 0;
   }
-  if (frames_since_restart_ < UINT32_MAX) ++frames_since_restart_;
-  frame_passes_ = 1;
-  if (boosted_frames_left_ > 0) {
-    --boosted_frames_left_;
-    frame_passes_ = uint32_t(std::clamp<size_t>(size_t(settings_.restart_passes), 1, capacity));
-  }
+  frame_passes_ = boost_.frame_passes(settings_, restart, c.accumulate, capacity);
   for (uint32_t k = 0; k < frame_passes_; ++k) {
-    // The sample pattern follows the frame index, so that frames are independent without
-    // accumulation and no two passes of an estimate share photons; a boosted frame's extra
-    // passes take samples far from any frame's.
-    const uint32_t sample = c.frame_index + k * 0x10000000u;
-    PhotonBuffer& photons = history_.add(sample);
+    const PhotonTraceSettings ts = pass_trace_settings(settings_, c.frame_index, k);
+    PhotonBuffer& photons = history_.add(ts.pass);
     {
       ScopedStage stage(c.times, "prepare/photon trace");
-      PhotonTraceSettings ts;
-      ts.paths = uint32_t(settings_.photons);
-      ts.max_bounces = settings_.bounces;
-      ts.seed = uint32_t(settings_.seed);
-      ts.pass = sample;
       const PhotonTraceStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ts, photons);
       c.counters.photon_paths += stats.paths;
       c.counters.photons_stored += stats.stored;
@@ -210,7 +224,7 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
   // Progressive photon mapping as the average of independent passes whose radius shrinks
   // (Knaus and Zwicker 2011). Passes gathered together share one radius, and their summed flux
   // gives the sum of their estimates.
-  GatherPlan plan{progressive_radius(full_radius_, settings_.alpha, passes_), settings_.lowres,
+  GatherPlan plan{frame_radius(full_radius_, settings_.alpha, fresh, passes_), settings_.lowres,
                   settings_.gather != 0};
   const PhotonBuffer* photons = &history_.newest();
   if (moved && passes_ > 1) {
@@ -226,7 +240,6 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
     ScopedStage stage(c.times, "indirect/photon union");
     history_.concatenate(union_, fresh);
     photons = &union_;
-    plan.radius = range_radius(full_radius_, settings_.alpha, before + 1, passes_);
   }
   last_radius_ = plan.radius;
   estimate(c, *photons, plan, pass_estimate_);

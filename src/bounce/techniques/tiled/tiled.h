@@ -38,6 +38,19 @@ struct TiledSettings {
   int seed = 0;
 };
 
+// The restart boost (TiledSettings::restart_passes), kept by each backend's technique: call
+// frame_passes once per frame.
+struct RestartBoost {
+  // Frames since the last restart (the first frame counts as after a long still period), and
+  // how many more frames trace restart_passes passes.
+  uint32_t frames_since_restart = UINT32_MAX;
+  uint32_t boosted_frames_left = 0;
+
+  // The passes this frame traces; `restart`: the world restarted this frame (or accumulation
+  // is off), `capacity`: the most passes a frame may trace.
+  uint32_t frame_passes(const TiledSettings& s, bool restart, bool accumulate, size_t capacity);
+};
+
 class TiledPhotonMapping final : public Technique {
  public:
   TiledPhotonMapping();
@@ -72,6 +85,15 @@ class TiledPhotonMapping final : public Technique {
   static float union_radius(float full_radius, float alpha, uint32_t passes);
   // The same for passes first..last (1-based) gathered together: this frame's passes.
   static float range_radius(float full_radius, float alpha, uint32_t first, uint32_t last);
+  // The gather radius of a frame that brings the estimate to `passes` passes with `fresh` new
+  // ones: their range's (range_radius) when several are gathered together, else the
+  // progressive radius.
+  static float frame_radius(float full_radius, float alpha, uint32_t fresh, uint32_t passes);
+  // Photon pass k of frame `frame_index`: the sample pattern follows the frame index, so that
+  // frames are independent without accumulation and no two passes of an estimate share photons;
+  // a boosted frame's extra passes take samples far from any frame's.
+  static PhotonTraceSettings pass_trace_settings(const TiledSettings& s, uint32_t frame_index,
+                                                 uint32_t k);
   // Photon passes this frame traced (restart_passes in the frames after a restart, else 1).
   uint32_t frame_passes() const { return frame_passes_; }
   // The full radius (of the first pass) in the last frame's scene.
@@ -107,10 +129,7 @@ class TiledPhotonMapping final : public Technique {
   Image accumulated_;          // the sum of the passes' estimates
   uint32_t passes_ = 0;        // in accumulated_; 0: restart at the next frame
   uint32_t frame_passes_ = 1;  // traced by this frame's prepare, the newest in history_
-  // Frames since the last restart (the first frame counts as after a long still period), and
-  // how many more frames trace restart_passes passes.
-  uint32_t frames_since_restart_ = UINT32_MAX;
-  uint32_t boosted_frames_left_ = 0;
+  RestartBoost boost_;
   float full_radius_ = 0.0f;
   float last_radius_ = 0.0f;
   float diagonal_ = 1.0f;
