@@ -396,8 +396,12 @@ TEST(CliReliability, InfoAndBenchReportTechniqueMemory) {
   const Result bench = run("bench cornell -t lhb -W 16 -H 16 -n 1 --warmup 0 -p size=32");
   EXPECT_EQ(bench.status, 0) << bench.output;
   // 320 x 32^2 x 129 bytes = 40.3 MiB.
-  EXPECT_NE(bench.output.find("technique data (estimate)"), std::string::npos) << bench.output;
+  EXPECT_NE(bench.output.find("technique data (bound)"), std::string::npos) << bench.output;
   EXPECT_NE(bench.output.find("40.3 MiB"), std::string::npos) << bench.output;
+  // Beside the bound, what the process holds: at least the buffers themselves.
+  const size_t resident = bench.output.find("resident memory");
+  ASSERT_NE(resident, std::string::npos) << bench.output;
+  EXPECT_GE(std::stod(bench.output.substr(resident + 16)), 40.3) << bench.output;
 }
 
 }  // namespace

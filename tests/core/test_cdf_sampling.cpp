@@ -39,6 +39,27 @@ TEST(CdfSampling, PicksTheEntryWhoseIntervalHoldsU) {
   EXPECT_EQ(sample_cdf(cdf.data(), cdf.size(), 0.1875f).u, 0.5f);  // middle of entry 1
 }
 
+TEST(CdfSampling, AgreesWithTheScanForEveryTableSize) {
+  // The search halves its range by selects: sizes that are not powers of two, zero-probability
+  // runs and u on every boundary and past the end must all land where the scan lands.
+  Pcg32 rng(29);
+  for (uint32_t count = 1; count <= 70; ++count) {
+    std::vector<float> cdf(count);
+    float sum = 0.0f;
+    for (uint32_t k = 0; k < count; ++k) {
+      sum += rng.next_float() < 0.2f ? 0.0f : rng.next_float();
+      cdf[k] = sum;
+    }
+    for (float& c : cdf) c = sum > 0.0f ? c / sum : 1.0f;
+    std::vector<float> us(cdf.begin(), cdf.end());
+    us.push_back(0.0f);
+    us.push_back(0.99999994f);
+    for (int i = 0; i < 200; ++i) us.push_back(rng.next_float());
+    for (const float u : us)
+      ASSERT_EQ(sample_cdf(cdf.data(), count, u).entry, scan(cdf, u)) << count << " " << u;
+  }
+}
+
 TEST(CdfSampling, StretchedSamplesStayUniformWithinTheEntry) {
   // Stratified u over [0, 1) lands, within each entry, on stratified points over [0, 1).
   const std::vector<float> cdf = {0.25f, 1.0f};
