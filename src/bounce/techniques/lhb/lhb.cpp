@@ -35,7 +35,7 @@ LhbTechnique::LhbTechnique() {
   params_.add_float("filter_distance", &s.filter_distance, 0.0, 10.0,
                     "filter: largest position gap of a neighbour / view depth");
   params_.add_int("lowres", &s.lowres, 1, 16,
-                  "paths at 1/lowres of the width and height (edges at full resolution)");
+                  "paths at 1/lowres of the width and height (edges, if any, at full)");
   add_edge_params(params_, s.edges);
   params_.add_int("seed", &s.seed, 0, 1 << 30, "seed of the paths' random numbers");
 }
@@ -50,7 +50,8 @@ std::vector<TechniqueOption> LhbTechnique::options() const {
 }
 
 std::vector<std::string> LhbTechnique::still_defaults() const {
-  return {"paths=16"};  // the seed's dynamic-scene setting (16 paths, 2 bounces)
+  // The seed's dynamic-scene setting (16 paths, 2 bounces) at every pixel, with its filter.
+  return {"paths=16", "lowres=1", "filter=true"};
 }
 
 double LhbTechnique::hit_buffer_bytes(size_t directions, int size, int layers) {

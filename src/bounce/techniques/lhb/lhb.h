@@ -24,11 +24,18 @@ struct LhbTechniqueSettings {
   int bounces = 2;           // indirect bounces
   float cone_radius = 1.5f;  // texels
   int interleave = 3;        // n x n interleaved sample sets (1: off)
-  bool filter = true;        // the discontinuity buffer over the n x n window
+  // Real-time frames go through the denoiser, whose edge-aware filter does what the seed's
+  // discontinuity buffer and the re-estimated edge pixels did, so both are off and the paths run
+  // at a quarter of the resolution: the first frame and frame 30 score as at full resolution
+  // against the path reference, in a third of the time (docs/lhb.md, "Real-time defaults").
+  // Stills (still_defaults) take every pixel's paths and the filter.
+  bool filter = false;  // the discontinuity buffer over the n x n window
   float filter_normal = 0.9f;
   float filter_distance = 0.05f;  // position gap / view depth
-  int lowres = 1;                 // paths at 1/lowres of the width and height, edges at full
-  EdgeSettings edges;  // which pixels a low-resolution estimate re-estimates at full resolution
+  int lowres = 4;                 // paths at 1/lowres of the width and height
+  // Which pixels a low-resolution estimate re-estimates at full resolution: none (no normal
+  // agreement is below -1, no gap beyond the scene's diagonal).
+  EdgeSettings edges{-1.0f, 1.0f};
   int seed = 0;
 };
 
