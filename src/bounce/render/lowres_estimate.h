@@ -71,20 +71,32 @@ size_t estimate_at_low_res(const ConstGBufferView& g, int factor, const EdgeTest
   }
   ScopedStage stage(times, "indirect/upsample + edges");
   const ConstLowResView low_read = low_view;
-  // A task per row: the row's interpolation weights are shared, and the views are copied in so
-  // that the compiler keeps their pointers in registers (the estimator too: it must be copyable).
-  // The edges are counted row by row.
+  // A task per row: the row blends its low-resolution columns once for all its pixels, then
+  // each pixel blends its two; the edges are estimated after the row's blend, so that loop holds
+  // no call. The views are copied in so that the compiler keeps their pointers in registers
+  // (the estimator too: it must be copyable). The edges are counted row by row.
   return parallel_reduce(
       size_t(g.height), size_t(0),
       [&](size_t y) {
         const ConstGBufferView gv = g;
         const ConstLowResView l = low_read;
         const Estimate e = estimate;
-        const UpsampleRow row = upsample_row(l, int(y));
-        size_t edge_count = 0;
-        for (int x = 0; x < g.width; ++x)
-          edge_count += upsample_pixel(gv, l, edges, row, out, x, int(y), e) ? 1 : 0;
-        return edge_count;
+        const int py = int(y);
+        const UpsampleRow row = upsample_row(l, py);
+        thread_local std::vector<UpsampleColumn> columns;
+        thread_local std::vector<int> edge_x;
+        columns.resize(size_t(l.width));
+        for (int lx = 0; lx < l.width; ++lx) columns[size_t(lx)] = upsample_column(l, row, lx);
+        edge_x.clear();
+        for (int x = 0; x < gv.width; ++x) {
+          const UpsampleSpan span = upsample_span(l, x);
+          const Upsampled u = upsample_blend(gv, edges, gv.index(x, py), columns[size_t(span.lx0)],
+                                             columns[size_t(span.lx1)], span.fx);
+          out.at(x, py) = u.radiance;
+          if (u.edge) edge_x.push_back(x);
+        }
+        for (const int x : edge_x) out.at(x, py) = edge_radiance(edges, x, py, e);
+        return edge_x.size();
       },
       [](size_t a, size_t b) { return a + b; }, 4);
 }

@@ -73,40 +73,80 @@ BOUNCE_HD inline UpsampleRow upsample_row(const ConstLowResView& low, int y) {
   return {ly0, glm::min(ly0 + 1, low.height - 1), glm::clamp(gy - float(ly0), 0.0f, 1.0f)};
 }
 
-// Bilinear upsampling of the low-resolution estimate to pixel (x, y) of row `row`; where the
-// interpolated normal or position disagrees with the pixel's own (an edge), or a contributing
-// sample missed, the pixel is estimated at full resolution. Writes out(x, y); returns whether it
-// was an edge.
+// Bilinear upsampling is separable: a row blends each low-resolution column between its two
+// low-resolution rows once (upsample_column), and each pixel blends the two columns on either
+// side of it (upsample_blend). A CPU row loop computes the row's columns once for all its
+// pixels; a GPU thread computes its two.
+struct UpsampleColumn {
+  vec3 radiance{0.0f}, normal{0.0f}, position{0.0f};
+  bool valid = false;  // every sample with weight in the blend hit a surface
+};
+BOUNCE_HD inline UpsampleColumn upsample_column(const ConstLowResView& low, const UpsampleRow& row,
+                                                int lx) {
+  const size_t a = low.index(lx, row.ly0), b = low.index(lx, row.ly1);
+  const float w0 = 1.0f - row.fy, w1 = row.fy;
+  UpsampleColumn c;
+  c.radiance = w0 * low.radiance[a] + w1 * low.radiance[b];
+  c.normal = w0 * low.normal[a] + w1 * low.normal[b];
+  c.position = w0 * low.position[a] + w1 * low.position[b];
+  c.valid = (low.valid[a] != 0 || !(w0 > 0.0f)) && (low.valid[b] != 0 || !(w1 > 0.0f));
+  return c;
+}
+
+// The two low-resolution columns around pixel column x and the weight of the second.
+struct UpsampleSpan {
+  int lx0, lx1;
+  float fx;
+};
+BOUNCE_HD inline UpsampleSpan upsample_span(const ConstLowResView& low, int x) {
+  const float gx = (float(x) + 0.5f) / float(low.factor) - 0.5f;
+  const int lx0 = glm::clamp(int(std::floor(gx)), 0, low.width - 1);
+  return {lx0, glm::min(lx0 + 1, low.width - 1), glm::clamp(gx - float(lx0), 0.0f, 1.0f)};
+}
+
+// The upsampled light at G-buffer pixel i from its two columns, and whether the pixel is an edge:
+// a sample with weight in the blend missed, or the blended normal or position disagrees with
+// the pixel's own. A pixel without a surface gets no light and is no edge.
+struct Upsampled {
+  vec3 radiance{0.0f};
+  bool edge = false;
+};
+BOUNCE_HD inline Upsampled upsample_blend(const ConstGBufferView& g, const EdgeTest& edges,
+                                          size_t i, const UpsampleColumn& c0,
+                                          const UpsampleColumn& c1, float fx) {
+  const float w0 = 1.0f - fx, w1 = fx;
+  const vec3 normal = w0 * c0.normal + w1 * c1.normal;
+  const vec3 gap = g.position[i] - (w0 * c0.position + w1 * c1.position);
+  const float len = glm::length(normal);
+  // The normal test without dividing by the blended normal's length (len > 0 there).
+  const bool edge = (!c0.valid && w0 > 0.0f) || (!c1.valid && w1 > 0.0f) || !(len > 0.0f) ||
+                    glm::dot(g.normal[i], normal) < edges.min_normal_dot * len ||
+                    glm::dot(gap, gap) > edges.max_gap * edges.max_gap;
+  const bool hit = g.hit(i);
+  Upsampled u;
+  u.radiance = hit ? w0 * c0.radiance + w1 * c1.radiance : vec3(0.0f);
+  u.edge = hit && edge;
+  return u;
+}
+
+// What an edge pixel gets: the full-resolution estimate, or yellow in the debug view.
+template <typename Estimate>
+BOUNCE_HD inline vec3 edge_radiance(const EdgeTest& edges, int x, int y, const Estimate& estimate) {
+  return edges.show_edges ? vec3(1.0f, 1.0f, 0.0f) : estimate(x, y);
+}
+
+// Bilinear upsampling of the low-resolution estimate to pixel (x, y) of row `row`, estimated at
+// full resolution instead where it is an edge (upsample_blend). Writes out(x, y); returns
+// whether it was an edge.
 template <typename Estimate>
 BOUNCE_HD inline bool upsample_pixel(const ConstGBufferView& g, const ConstLowResView& low,
                                      const EdgeTest& edges, const UpsampleRow& row,
                                      const ImageView& out, int x, int y, const Estimate& estimate) {
-  const size_t i = g.index(x, y);
-  if (!g.hit(i)) {
-    out.at(x, y) = vec3(0.0f);
-    return false;
-  }
-  const float gx = (float(x) + 0.5f) / float(low.factor) - 0.5f;
-  const int lx0 = glm::clamp(int(std::floor(gx)), 0, low.width - 1);
-  const int lx1 = glm::min(lx0 + 1, low.width - 1);
-  const float fx = glm::clamp(gx - float(lx0), 0.0f, 1.0f), fy = row.fy;
-  const size_t l[4] = {low.index(lx0, row.ly0), low.index(lx1, row.ly0), low.index(lx0, row.ly1),
-                       low.index(lx1, row.ly1)};
-  const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  bool edge = false;
-  vec3 normal(0.0f), position(0.0f), radiance(0.0f);
-  for (int k = 0; k < 4; ++k) {
-    if (!low.valid[l[k]]) edge = edge || w[k] > 0.0f;
-    normal += w[k] * low.normal[l[k]];
-    position += w[k] * low.position[l[k]];
-    radiance += w[k] * low.radiance[l[k]];
-  }
-  const float len = glm::length(normal);
-  edge = edge || len <= 0.0f || glm::dot(g.normal[i], normal / len) < edges.min_normal_dot ||
-         glm::length(g.position[i] - position) > edges.max_gap;
-  if (edge) radiance = edges.show_edges ? vec3(1.0f, 1.0f, 0.0f) : estimate(x, y);
-  out.at(x, y) = radiance;
-  return edge;
+  const UpsampleSpan span = upsample_span(low, x);
+  const Upsampled u = upsample_blend(g, edges, g.index(x, y), upsample_column(low, row, span.lx0),
+                                     upsample_column(low, row, span.lx1), span.fx);
+  out.at(x, y) = u.edge ? edge_radiance(edges, x, y, estimate) : u.radiance;
+  return u.edge;
 }
 
 }  // namespace bounce
