@@ -19,9 +19,9 @@ constexpr int kSize = 32;
 constexpr double kTwoBounceBound = 100.0;
 // lowres 2, same frames: measured 73.0 (lowres 1: 72.1) with 462 of 1024 pixels edges.
 constexpr double kLowResBound = 85.0;
-// The real-time defaults (lowres 4, no edges, no filter), same frames: measured 93.2 (lowres 1
-// with the filter: 72.6). At 32x32 a 4x4 block is an eighth of the image; at 512x512 the two
-// score alike (docs/lhb.md, "Real-time defaults").
+// lowres 4 without edges or filter, same frames: measured 93.2 (lowres 1 with the filter: 72.6).
+// At 32x32 a 4x4 block is an eighth of the image; at 512x512 the two score alike (docs/lhb.md,
+// "Real-time defaults").
 constexpr double kRealTimeBound = 110.0;
 
 // The last of `frames` frames at rest: direct light and the per-frame indirect estimates
@@ -107,15 +107,16 @@ TEST_F(LhbVsReference, HalfResolutionPathsStayNearFullResolution) {
   EXPECT_LT(half, 1.15 * full);
 }
 
-TEST_F(LhbVsReference, RealTimeDefaultsTraceAQuarterResolutionWithoutEdges) {
-  // The real-time defaults: paths from one pixel in sixteen, no edge pixels re-estimated and no
-  // discontinuity filter (the denoiser's filter does both jobs). Accumulated at rest the error
-  // stays within kRealTimeBound, well under what dropping a bounce costs (kTwoBounceBound's
-  // comment).
+TEST_F(LhbVsReference, CoarsePathsWithoutEdgesOrFilterStayNearTheReference) {
+  // The real-time defaults but for the block size, which they pick by the image's width (a
+  // 32x32 image gets paths at every pixel): paths from one pixel in sixteen, no edge pixels
+  // re-estimated and no discontinuity filter (the denoiser's filter does both jobs).
+  // Accumulated at rest the error stays within kRealTimeBound, well under what dropping a bounce
+  // costs (kTwoBounceBound's comment).
   auto technique = std::make_unique<LhbTechnique>();
   const LhbTechnique* lhb = technique.get();
-  EXPECT_EQ(lhb->settings().lowres, 4);
   EXPECT_FALSE(lhb->settings().filter);
+  technique->settings().lowres = 4;
   technique->settings().paths = 4;
   Renderer renderer(*scene_, *tracer_, std::move(technique));
   FrameSettings settings;
@@ -128,9 +129,20 @@ TEST_F(LhbVsReference, RealTimeDefaultsTraceAQuarterResolutionWithoutEdges) {
   EXPECT_EQ(lhb->edge_pixels(), 0u);
   const double quarter = mse8(frame->color);
   const double full = mse8(lhb_image(*scene_, *tracer_, 2, 32, 4));
-  RecordProperty("mse8_realtime_defaults", std::to_string(quarter));
+  RecordProperty("mse8_lowres_4_no_edges", std::to_string(quarter));
   RecordProperty("mse8_lowres_1_filtered", std::to_string(full));
   EXPECT_LT(quarter, kRealTimeBound) << "full resolution " << full;
+}
+
+TEST(LhbTechnique, PicksItsBlockSizeByTheImageWidth) {
+  // About 85 blocks across, at most 6 x 6 pixels, and every pixel's paths on small images.
+  EXPECT_EQ(LhbTechnique().settings().lowres, 0);
+  EXPECT_EQ(lhb_auto_lowres(32), 1);
+  EXPECT_EQ(lhb_auto_lowres(127), 1);
+  EXPECT_EQ(lhb_auto_lowres(128), 2);
+  EXPECT_EQ(lhb_auto_lowres(256), 3);
+  EXPECT_EQ(lhb_auto_lowres(512), 6);
+  EXPECT_EQ(lhb_auto_lowres(1920), 6);
 }
 
 TEST_F(LhbVsReference, BuffersTooLargeToAllocateAreAClearError) {

@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
@@ -34,8 +35,9 @@ LhbTechnique::LhbTechnique() {
                     "filter: least normal agreement of a neighbour");
   params_.add_float("filter_distance", &s.filter_distance, 0.0, 10.0,
                     "filter: largest position gap of a neighbour / view depth");
-  params_.add_int("lowres", &s.lowres, 1, 16,
-                  "paths at 1/lowres of the width and height (edges, if any, at full)");
+  params_.add_int("lowres", &s.lowres, 0, 16,
+                  "paths at 1/lowres of the width and height (edges, if any, at full); 0: a "
+                  "block size that follows the image's width");
   add_edge_params(params_, s.edges);
   params_.add_int("seed", &s.seed, 0, 1 << 30, "seed of the paths' random numbers");
 }
@@ -47,6 +49,12 @@ std::vector<TechniqueOption> LhbTechnique::options() const {
       param_option("directions", "directions", "Number of buffer directions (seed default 320)"),
       param_option("lowres", "lowres", "Paths at 1/N of the width and height, edges at full"),
   };
+}
+
+int lhb_auto_lowres(int width) {
+  constexpr float kBlocksAcross = 85.0f;
+  constexpr int kCoarsest = 6;
+  return std::clamp(int(std::lround(float(width) / kBlocksAcross)), 1, kCoarsest);
 }
 
 std::vector<std::string> LhbTechnique::still_defaults() const {
@@ -114,7 +122,8 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   const LhbScene ls{path_scene(context.scene_view, context.tracer, lights_), buffers_.view(),
                     directions_.view()};
 
-  gs.interleave_step = settings_.lowres;
+  const int lowres = settings_.lowres > 0 ? settings_.lowres : lhb_auto_lowres(g.width);
+  gs.interleave_step = lowres;
   incoming_.resize(g.size());
   const ImageView incoming_view{incoming_.data(), g.width, g.height};
   tbb::enumerable_thread_specific<PathCounters> counters;
@@ -124,19 +133,19 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   // At lowres > 1 the paths start from one pixel per lowres^2 block, upsampled, and from every
   // pixel where normals or positions disagree (the code tiled shares, render/lowres_kernels.h).
   const EdgeTest edges = settings_.edges.test(diagonal_);
-  if (settings_.lowres <= 1) {
+  if (lowres <= 1) {
     ScopedStage stage(context.times, "indirect/gather");
     edge_pixels_ = estimate_at_low_res(view, 1, edges, paths, low_, incoming_view, context.times);
   } else {
-    edge_pixels_ = estimate_at_low_res(view, settings_.lowres, edges, paths, low_, incoming_view,
-                                       context.times);
+    edge_pixels_ =
+        estimate_at_low_res(view, lowres, edges, paths, low_, incoming_view, context.times);
   }
   for (const PathCounters& pc : counters) context.counters.rays += pc.rays;
 
   vec3* pixels = out.pixels().data();
   const vec3* incoming = incoming_.data();
   ScopedStage stage(context.times, "indirect/filter");
-  if (settings_.edges.show && settings_.lowres > 1) {
+  if (settings_.edges.show && lowres > 1) {
     // The debug view: the upsampled incoming light as it is, edges in yellow.
     parallel_for(
         g.size(), [&](size_t i) { pixels[i] = incoming[i]; }, 4096);
