@@ -40,7 +40,7 @@ TEST(CdfSampling, PicksTheEntryWhoseIntervalHoldsU) {
 }
 
 TEST(CdfSampling, AgreesWithTheScanForEveryTableSize) {
-  // The search halves its range by selects: sizes that are not powers of two, zero-probability
+  // The binary search at every table size: sizes that are not powers of two, zero-probability
   // runs and u on every boundary and past the end must all land where the scan lands.
   Pcg32 rng(29);
   for (uint32_t count = 1; count <= 70; ++count) {

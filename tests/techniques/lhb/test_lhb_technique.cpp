@@ -35,7 +35,7 @@ Image lhb_image(const Scene& scene, Tracer& tracer, int bounces, int frames, int
   // 512x512) would call most pixels edges.
   technique->settings().edges.distance = 0.05f;
   // The bounds below were measured with the seed's discontinuity filter and tiled's edge test,
-  // the defaults before real-time frames moved to a quarter of the resolution.
+  // the defaults before real-time frames moved to coarser blocks without either.
   technique->settings().edges.normal = 0.99f;
   technique->settings().filter = true;
   technique->settings().bounces = bounces;
