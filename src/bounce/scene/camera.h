@@ -30,8 +30,9 @@ struct CameraRays {
   static CameraRays from(const Camera& camera, int width, int height);
   // Unit direction through the continuous pixel position (px, py).
   BOUNCE_HD vec3 direction(float px, float py) const {
-    const float sx = 2.0f * px / width - 1.0f;
-    const float sy = 1.0f - 2.0f * py / height;
+    // Reciprocals a row loop hoists: no division per pixel.
+    const float sx = px * (2.0f / width) - 1.0f;
+    const float sy = 1.0f - py * (2.0f / height);
     return glm::normalize(forward + sx * right + sy * up);
   }
   // Continuous pixel position of a world point in front of the camera (inverse of direction).
