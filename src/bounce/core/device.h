@@ -19,6 +19,30 @@
 #define BOUNCE_DEVICE_CODE 0
 #endif
 
+// Forced inlining for bodies that a CPU row loop vectorises: the body must be one basic block
+// inside the loop (the denoiser's a-trous pass, direct light's area-light samples).
+#if defined(__CUDACC__)
+#define BOUNCE_LANE_INLINE __forceinline__
+#define BOUNCE_LANE_LAMBDA_INLINE
+#elif defined(__GNUC__)
+#define BOUNCE_LANE_INLINE __attribute__((always_inline)) inline
+#define BOUNCE_LANE_LAMBDA_INLINE __attribute__((always_inline))
+#else
+#define BOUNCE_LANE_INLINE inline
+#define BOUNCE_LANE_LAMBDA_INLINE
+#endif
+
+// A loop whose iterations are independent (each writes its own pixel), for GCC's vectoriser.
+// Clang warns on GCC's pragma, and its own forcing one warns wherever vectorising fails (the
+// sanitizer build), so clang is left to its own analysis.
+#if defined(__clang__)
+#define BOUNCE_IVDEP
+#elif defined(__GNUC__)
+#define BOUNCE_IVDEP _Pragma("GCC ivdep")
+#else
+#define BOUNCE_IVDEP
+#endif
+
 namespace bounce {
 
 // T or const T: views come in a writable and a read-only flavour from one definition.

@@ -116,8 +116,8 @@ enum class Columns { kInside, kMasked, kClamped };
 
 // Tap column x + offset; `mask` becomes `outside` where the column is outside the image.
 template <Columns kColumns>
-BOUNCE_HD BOUNCE_DENOISE_INLINE int tap_column(int x, int offset, int width, float& mask,
-                                               float outside) {
+BOUNCE_HD BOUNCE_LANE_INLINE int tap_column(int x, int offset, int width, float& mask,
+                                            float outside) {
   int qx = x + offset;
   if constexpr (kColumns != Columns::kInside) {
     const bool inside = (qx >= 0) & (qx < width);
@@ -139,16 +139,16 @@ inline constexpr int kAtrousGeometry = kAtrousTaps<kRadius> + 2;
 // for the lights that stop at luminance edges (kLuminance).
 template <int kRadius, bool kIndirect, Columns kColumns, bool kLuminanceDirect = true,
           bool kLuminanceIndirect = true>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
-                                                     const AtrousRows<kRadius>& rows, int x,
-                                                     float* geometry, size_t stride) {
+BOUNCE_HD BOUNCE_LANE_INLINE void atrous_geometry(const AtrousPass& p,
+                                                  const AtrousRows<kRadius>& rows, int x,
+                                                  float* geometry, size_t stride) {
   const size_t c = rows.tap[kRadius] + size_t(x);
   const float zp = p.surface.depth[c];
   const float nxp = p.surface.nx[c], nyp = p.surface.ny[c], nzp = p.surface.nz[c];
   const float inv_phi_z =
       kLog2e /
       (p.sigma_depth * float(p.step) * (p.depth_slope[c] + kDepthSlopeFloor * zp) + kDepthEpsilon);
-  unrolled<kAtrousTaps<kRadius>>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<kAtrousTaps<kRadius>>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     using Tap = AtrousTap<kRadius, decltype(k)::value>;
     constexpr float kernel = atrous_kernel<kRadius>(Tap::dx) * atrous_kernel<kRadius>(Tap::dy);
     const float log2_kernel = std::log2(kernel);
@@ -164,7 +164,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
   constexpr bool kScaleIndirect = kIndirect && kLuminanceIndirect;
   if constexpr (kLuminanceDirect || kScaleIndirect) {
     float vd = 0.0f, vi = 0.0f, vw = 0.0f;
-    unrolled<9>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+    unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
       constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
       constexpr float hk = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
       float mask = rows.near_mask[dy + 1];
@@ -189,9 +189,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_geometry(const AtrousPass& p,
 // One light's pass at pixel x (light 0 direct, 1 indirect), with what atrous_geometry wrote.
 // Without kVariance (the last pass, or no kLuminance) the variance is not filtered.
 template <int kRadius, Columns kColumns, bool kVariance, bool kLuminance = true>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light_index,
-                                                  const AtrousRows<kRadius>& rows, int x,
-                                                  const float* geometry, size_t stride) {
+BOUNCE_HD BOUNCE_LANE_INLINE void atrous_light(const AtrousPass& p, int light_index,
+                                               const AtrousRows<kRadius>& rows, int x,
+                                               const float* geometry, size_t stride) {
   static_assert(kLuminance || !kVariance, "a light without luminance stops has no variance");
   const AtrousLight& light = light_index ? p.indirect : p.direct;
   const size_t c = rows.tap[kRadius] + size_t(x);
@@ -204,7 +204,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void atrous_light(const AtrousPass& p, int light
   float sw = kCentre, sr = kCentre * light.in.r[c], sg = kCentre * light.in.g[c],
         sb = kCentre * light.in.b[c], sv = 0.0f;
   if constexpr (kVariance) sv = kCentre * kCentre * light.in_var[c];
-  unrolled<kAtrousTaps<kRadius>>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<kAtrousTaps<kRadius>>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     using Tap = AtrousTap<kRadius, decltype(k)::value>;
     float unused = 0.0f;
     const int qx = tap_column<kColumns>(x, Tap::dx * p.step, p.width, unused, 0.0f);

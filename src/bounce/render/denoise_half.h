@@ -65,7 +65,7 @@ struct HalfDownsample {
 // column may lie outside an image of odd width (the last texel of a row; the row loop's other
 // texels need no test). kMoments: p.moments. Branch-free, so the CPU's row loop vectorises.
 template <bool kClampX, int kLights, BlockMoments kMoments>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
+BOUNCE_HD BOUNCE_LANE_INLINE void downsample_pixel(const HalfDownsample& p, int hx, int hy) {
   const int x0 = 2 * hx, y0 = 2 * hy;
   const int x1 = kClampX && x0 + 1 >= p.width ? x0 : x0 + 1;
   const int y1 = y0 + 1 < p.height ? y0 + 1 : y0;
@@ -73,7 +73,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
   const size_t block[4] = {r0 + size_t(x0), r0 + size_t(x1), r1 + size_t(x0), r1 + size_t(x1)};
   // The representative: the nearest pixel whose surface is filtered (a non-zero normal).
   float rep_depth = 1e30f, nx = 0.0f, ny = 0.0f, nz = 0.0f;
-  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<4>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
     const float qx = p.surface.nx[q], qy = p.surface.ny[q], qz = p.surface.nz[q];
@@ -86,7 +86,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
   const bool found = rep_depth < 1e30f;
   float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, var[kLights] = {}, count = 0.0f;
   float moments[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<4>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     const size_t q = block[decltype(k)::value];
     const float z = p.surface.depth[q];
     const float cos_q = nx * p.surface.nx[q] + ny * p.surface.ny[q] + nz * p.surface.nz[q];
@@ -104,7 +104,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
       pixel_var[1] = 1.0f / frames_i;
     } else if constexpr (kMoments == BlockMoments::kOneFrame) {
       const float on = z > 0.0f ? 1.0f : 0.0f;
-      unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+      unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
         constexpr int kL = decltype(l)::value;
         const float m1 = on * luminance_of(p.light[kL].get(q));
         moments[2 * kL] += m1;
@@ -113,11 +113,11 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
       });
       moments[4] += on;
     } else {
-      unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+      unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
         pixel_var[decltype(l)::value] = p.variance[decltype(l)::value][q];
       });
     }
-    unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+    unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
       constexpr int kL = decltype(l)::value;
       r[kL] += w * p.light[kL].r[q];
       g[kL] += w * p.light[kL].g[q];
@@ -133,7 +133,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
   p.half_surface.nx[h] = nx;
   p.half_surface.ny[h] = ny;
   p.half_surface.nz[h] = nz;
-  unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int kL = decltype(l)::value;
     p.half_light[kL].r[h] = r[kL] * inv;
     p.half_light[kL].g[h] = g[kL] * inv;
@@ -148,7 +148,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void downsample_pixel(const HalfDownsample& p, i
 // Calls f(lights, moments) with p.lights and p.moments as integral constants: the one dispatch
 // of the downsample's switches, for every launcher.
 template <typename F>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void with_downsample_switches(const HalfDownsample& p, const F& f) {
+BOUNCE_HD BOUNCE_LANE_INLINE void with_downsample_switches(const HalfDownsample& p, const F& f) {
   auto with_moments = [&](auto lights) {
     switch (p.moments) {
       case BlockMoments::kNone:
@@ -200,7 +200,7 @@ template <int kCount>
 struct UpsampleToPlanes {
   static constexpr int kLights = kCount;
   const HalfUpsample& p;
-  BOUNCE_HD BOUNCE_DENOISE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
+  BOUNCE_HD BOUNCE_LANE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
     for (int l = 0; l < kLights; ++l) p.out[l].set(i, light[l]);
   }
 };
@@ -209,7 +209,7 @@ template <int kCount, bool kRest, bool kIndirectOnly = false>
 struct UpsampleRemodulated {
   static constexpr int kLights = kCount;
   const HalfUpsample& p;
-  BOUNCE_HD BOUNCE_DENOISE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
+  BOUNCE_HD BOUNCE_LANE_INLINE void operator()(size_t i, const vec3 (&light)[kLights]) const {
     if constexpr (kIndirectOnly)
       remodulate_light<true, kRest>(p.remodulate, i, p.remodulate.direct.get(i), light[0]);
     else
@@ -238,8 +238,8 @@ BOUNCE_HD inline HalfUpsampleRows half_upsample_rows(const HalfUpsample& p, int 
 template <int kLights>
 inline constexpr int kHalfChannels = 4 + 3 * kLights;
 template <int kLights>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void half_channels(const HalfUpsample& p,
-                                                   const float* (&c)[kHalfChannels<kLights>]) {
+BOUNCE_HD BOUNCE_LANE_INLINE void half_channels(const HalfUpsample& p,
+                                                const float* (&c)[kHalfChannels<kLights>]) {
   c[0] = p.half_surface.depth;
   c[1] = p.half_surface.nx;
   c[2] = p.half_surface.ny;
@@ -256,9 +256,9 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void half_channels(const HalfUpsample& p,
 // texel row dy, hx0 as below: the launcher decides how texels are laid out. store(i, light)
 // puts the result (UpsampleToPlanes, UpsampleRemodulated).
 template <int kLights, typename Texel, typename Store>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
-                                                   const HalfUpsampleRows& rows, int x, int y,
-                                                   const Texel& texel, const Store& store) {
+BOUNCE_HD BOUNCE_LANE_INLINE void upsample_from(const HalfUpsample& p, const HalfUpsampleRows& rows,
+                                                int x, int y, const Texel& texel,
+                                                const Store& store) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
   const float z = p.surface.depth[i];
   const float nx = p.surface.nx[i], ny = p.surface.ny[i], nz = p.surface.nz[i];
@@ -273,7 +273,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
   const float slope = glm::min(p.depth_slope[i], kHalfDepthAgreement * z);
   const float max_dz = (2.0f * p.sigma_depth * slope) + kHalfDepthAgreement * z;
   float r[kLights] = {}, g[kLights] = {}, b[kLights] = {}, wsum = 0.0f;
-  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<4>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     const float* const* c = nullptr;
     size_t h = 0;
@@ -284,7 +284,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
     const bool same =
         (zh > 0.0f) & (cos_nh >= kHalfNormalAgreement) & (std::fabs(zh - z) <= max_dz);
     const float w = same ? bilinear : 0.0f;
-    unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+    unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
       constexpr int kL = decltype(l)::value;
       r[kL] += w * c[4 + 3 * kL][h];
       g[kL] += w * c[5 + 3 * kL][h];
@@ -295,7 +295,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void upsample_from(const HalfUpsample& p,
   const bool represented = (z > 0.0f) & (wsum > kHalfMinWeight);
   const float inv = 1.0f / (represented ? wsum : 1.0f);
   vec3 light[kLights];
-  unrolled<kLights>([&](auto l) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int kL = decltype(l)::value;
     light[kL] = vec3(represented ? r[kL] * inv : p.light[kL].r[i],
                      represented ? g[kL] * inv : p.light[kL].g[i],
@@ -324,7 +324,7 @@ BOUNCE_HD inline void upsample_pixel(const HalfUpsample& p, const HalfUpsampleRo
 
 // Calls f(store) with the store `p` asks for: f is templated on the lights and the store.
 template <typename F>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void with_upsample_store(const HalfUpsample& p, const F& f) {
+BOUNCE_HD BOUNCE_LANE_INLINE void with_upsample_store(const HalfUpsample& p, const F& f) {
   if (p.lights == 2) {
     if (!p.remodulated) return f(UpsampleToPlanes<2>{p});
     return p.rest ? f(UpsampleRemodulated<2, true>{p}) : f(UpsampleRemodulated<2, false>{p});

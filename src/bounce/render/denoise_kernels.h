@@ -18,29 +18,6 @@
 #include "bounce/core/math.h"
 #include "bounce/render/gbuffer_view.h"
 
-// Forced inlining: the a-trous body must be one basic block inside the row loop to vectorise.
-#if defined(__CUDACC__)
-#define BOUNCE_DENOISE_INLINE __forceinline__
-#define BOUNCE_DENOISE_LAMBDA_INLINE
-#elif defined(__GNUC__)
-#define BOUNCE_DENOISE_INLINE __attribute__((always_inline)) inline
-#define BOUNCE_DENOISE_LAMBDA_INLINE __attribute__((always_inline))
-#else
-#define BOUNCE_DENOISE_INLINE inline
-#define BOUNCE_DENOISE_LAMBDA_INLINE
-#endif
-
-// A loop whose iterations are independent (each writes its own pixel), for GCC's vectoriser.
-// Clang warns on GCC's pragma, and its own forcing one warns wherever vectorising fails (the
-// sanitizer build), so clang is left to its own analysis.
-#if defined(__clang__)
-#define BOUNCE_IVDEP
-#elif defined(__GNUC__)
-#define BOUNCE_IVDEP _Pragma("GCC ivdep")
-#else
-#define BOUNCE_IVDEP
-#endif
-
 namespace bounce::denoise {
 
 // An albedo channel at or below this is "black": light is demodulated by 1 there.
@@ -172,27 +149,27 @@ BOUNCE_HD inline vec3 demodulation_factor(vec3 albedo) {
 
 // c ? a : b as bit operations: no branch for the compiler to thread on, so a row loop full of
 // them stays one basic block and vectorises.
-BOUNCE_HD BOUNCE_DENOISE_INLINE uint32_t pick(bool c, uint32_t a, uint32_t b) {
+BOUNCE_HD BOUNCE_LANE_INLINE uint32_t pick(bool c, uint32_t a, uint32_t b) {
   const uint32_t m = 0u - uint32_t(c);
   return (a & m) | (b & ~m);
 }
-BOUNCE_HD BOUNCE_DENOISE_INLINE float pick(bool c, float a, float b) {
+BOUNCE_HD BOUNCE_LANE_INLINE float pick(bool c, float a, float b) {
 #if BOUNCE_DEVICE_CODE
   return c ? a : b;
 #else
   return std::bit_cast<float>(pick(c, std::bit_cast<uint32_t>(a), std::bit_cast<uint32_t>(b)));
 #endif
 }
-BOUNCE_HD BOUNCE_DENOISE_INLINE vec3 pick(bool c, vec3 a, vec3 b) {
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 pick(bool c, vec3 a, vec3 b) {
   return {pick(c, a.x, b.x), pick(c, a.y, b.y), pick(c, a.z, b.z)};
 }
-BOUNCE_HD BOUNCE_DENOISE_INLINE vec4 pick(bool c, vec4 a, vec4 b) {
+BOUNCE_HD BOUNCE_LANE_INLINE vec4 pick(bool c, vec4 a, vec4 b) {
   return {pick(c, a.x, b.x), pick(c, a.y, b.y), pick(c, a.z, b.z), pick(c, a.w, b.w)};
 }
 
 // 2^x for x <= 0, and exactly 0 below -126: the filter's weights. On the CPU a cubic (relative
 // error 1e-4, plenty for a weight) that vectorises.
-BOUNCE_HD BOUNCE_DENOISE_INLINE float exp2_weight(float x) {
+BOUNCE_HD BOUNCE_LANE_INLINE float exp2_weight(float x) {
 #if BOUNCE_DEVICE_CODE
   return x < -126.0f ? 0.0f : exp2f(x < 0.0f ? x : 0.0f);
 #else
@@ -210,19 +187,19 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE float exp2_weight(float x) {
 // ln(cos) = -(t + t^2/2 + t^3/3 + ...) with t = 1 - cos: accurate (1e-3) wherever the weight is
 // not ~0, three multiply-adds instead of a logarithm; a zero weight where cos <= 0 (opposite
 // normals, or a pixel without a surface, whose normal is 0).
-BOUNCE_HD BOUNCE_DENOISE_INLINE float normal_log2_weight(float cos_pq, float sigma_normal) {
+BOUNCE_HD BOUNCE_LANE_INLINE float normal_log2_weight(float cos_pq, float sigma_normal) {
   const float t = 1.0f - cos_pq;
   return -(sigma_normal * kLog2e) * t * (1.0f + t * (0.5f + t * (1.0f / 3.0f))) +
          (cos_pq > 0.0f ? 0.0f : -1e4f);
 }
 
 template <typename F, int... k>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void unrolled_impl(F& f, std::integer_sequence<int, k...>) {
+BOUNCE_HD BOUNCE_LANE_INLINE void unrolled_impl(F& f, std::integer_sequence<int, k...>) {
   (f(std::integral_constant<int, k>{}), ...);
 }
 // Calls f(integral_constant<int, k>) for k in [0, count): loops the compiler sees unrolled.
 template <int kCount, typename F>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void unrolled(F&& f) {
+BOUNCE_HD BOUNCE_LANE_INLINE void unrolled(F&& f) {
   unrolled_impl(f, std::make_integer_sequence<int, kCount>{});
 }
 
@@ -238,8 +215,8 @@ struct RemodulatePass {
 // the averages); in motion, pixels without a surface keep what the techniques wrote.
 // Branch-free, so the CPU's loop vectorises.
 template <bool kIndirect, bool kRest>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_light(const RemodulatePass& p, size_t i,
-                                                      vec3 direct, vec3 indirect) {
+BOUNCE_HD BOUNCE_LANE_INLINE void remodulate_light(const RemodulatePass& p, size_t i, vec3 direct,
+                                                   vec3 indirect) {
   // At rest every pixel holds an average, those without a surface this frame too.
   const bool averaged = p.g.hit(i) | kRest;
   const vec3 f = kRest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
@@ -250,7 +227,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_light(const RemodulatePass& p, s
 
 // The same with the filtered light from p's planes.
 template <bool kIndirect, bool kRest>
-BOUNCE_HD BOUNCE_DENOISE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
+BOUNCE_HD BOUNCE_LANE_INLINE void remodulate_pixel(const RemodulatePass& p, size_t i) {
   remodulate_light<kIndirect, kRest>(p, i, p.direct.get(i),
                                      kIndirect ? p.indirect.get(i) : vec3(0.0f));
 }

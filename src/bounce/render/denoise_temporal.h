@@ -70,8 +70,8 @@ struct Reprojected {
 // image read its nearest pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
 // still leaves the CPU's row loop scalar: it makes the taps' loads masked gathers, which it
 // only emulates for this target and cannot mask.)
-BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
-                                                            size_t i) {
+BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
+                                                         size_t i) {
   Reprojected r;
   const vec2 m = p.g.motion[i];
   const float sx = float(p.prev_width) / float(p.width),
@@ -85,7 +85,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& 
   const float z = p.g.depth[i], dz_max = p.s.depth_tolerance * z;
   const vec3 normal = p.g.normal[i];
   float weight = 0.0f;
-  unrolled<4>([&](auto k) BOUNCE_DENOISE_LAMBDA_INLINE {
+  unrolled<4>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
     const int qx = x0 + dx, qy = y0 + dy;
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
@@ -110,8 +110,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject_moved(const TemporalPass& 
   return r;
 }
 
-BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected reproject(const TemporalPass& p, int x, int y,
-                                                      size_t i) {
+BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject(const TemporalPass& p, int x, int y, size_t i) {
   if (p.s.reproject) return reproject_moved(p, x, y, i);
   // At rest the pixel sees the same surface: the same pixel, no filtering, no tests (jittered
   // frames may see another object at an edge, or none, and that is the antialiasing: every
@@ -196,7 +195,7 @@ struct ReprojectedRow {
 };
 
 // ReprojectedRow's entry x, read through plain pointers (the vectoriser's need).
-BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const* v, int x) {
+BOUNCE_HD BOUNCE_LANE_INLINE Reprojected load_reprojected(const float* const* v, int x) {
   Reprojected r;
   r.h.direct = vec4(v[0][x], v[1][x], v[2][x], v[3][x]);
   r.h.indirect = vec4(v[4][x], v[5][x], v[6][x], v[7][x]);
@@ -213,8 +212,8 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE Reprojected load_reprojected(const float* const*
 // Returns whether the pixel's history is too short for its own variance (the spatial estimate then
 // stands in).
 template <bool kIndirect, bool kRest>
-BOUNCE_HD BOUNCE_DENOISE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
-                                                    const Reprojected& r) {
+BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
+                                                 const Reprojected& r) {
   const bool hit = p.g.hit(i);
   const vec3 normal = p.g.normal[i];
   const float depth = p.g.depth[i];

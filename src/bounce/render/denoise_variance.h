@@ -17,8 +17,8 @@ namespace bounce::denoise {
 // depth edge does not count); `up` and `down` are the neighbouring rows' starts (the row itself
 // outside the image). Sides without a surface (depth 0) or outside the image do not count.
 template <bool kCheckColumns>
-BOUNCE_HD BOUNCE_DENOISE_INLINE float depth_slope_pixel(const float* depth, int width, size_t row,
-                                                        size_t up, size_t down, int x) {
+BOUNCE_HD BOUNCE_LANE_INLINE float depth_slope_pixel(const float* depth, int width, size_t row,
+                                                     size_t up, size_t down, int x) {
   constexpr float kNone = 1e30f;
   const size_t i = row + size_t(x);
   const float z = depth[i];
@@ -54,7 +54,7 @@ struct BoxPass {
 
 // What one pixel adds to the box sums: its moments (direct m1, m2, indirect m1, m2) and a count
 // of 1, or nothing where it has no surface.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moments(const HistoryTexel& t, float depth, float m[5]) {
+BOUNCE_HD BOUNCE_LANE_INLINE void box_moments(const HistoryTexel& t, float depth, float m[5]) {
   const float on = depth > 0.0f ? 1.0f : 0.0f;
   m[0] = on * luminance_of(vec3(t.direct));
   m[1] = on * t.direct.w;
@@ -88,8 +88,8 @@ struct VariancePass {
 };
 
 // The luminance variances of the moments of a box (box_moments' sums `s`): direct, indirect.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moment_variances(const float s[5], float& var_d,
-                                                          float& var_i) {
+BOUNCE_HD BOUNCE_LANE_INLINE void box_moment_variances(const float s[5], float& var_d,
+                                                       float& var_i) {
   const float inv = 1.0f / (s[4] > 0.0f ? s[4] : 1.0f);
   const float m1_d = s[0] * inv, m2_d = s[1] * inv, m1_i = s[2] * inv, m2_i = s[3] * inv;
   var_d = glm::max(m2_d - m1_d * m1_d, 0.0f);
@@ -98,8 +98,8 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void box_moment_variances(const float s[5], floa
 
 // The frames a pixel's estimate averages, of direct and of indirect light (the latter capped for
 // a technique that accumulates indirect light itself), from its history length.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void averaged_frames(float length, float cap_indirect,
-                                                     float& frames_d, float& frames_i) {
+BOUNCE_HD BOUNCE_LANE_INLINE void averaged_frames(float length, float cap_indirect, float& frames_d,
+                                                  float& frames_i) {
   frames_d = length + 1.0f;
   frames_i = glm::min(frames_d, cap_indirect + 1.0f);
 }
@@ -107,8 +107,7 @@ BOUNCE_HD BOUNCE_DENOISE_INLINE void averaged_frames(float length, float cap_ind
 // The box estimate at pixel i from its box sums `s`: where the history is short (and there is a
 // surface), the variance of the box's moments divided by the frames averaged replaces the
 // pixel's own; elsewhere the pixel keeps it. Branch-free, so a row loop vectorises.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void box_variance(const VariancePass& p, size_t i,
-                                                  const float s[5]) {
+BOUNCE_HD BOUNCE_LANE_INLINE void box_variance(const VariancePass& p, size_t i, const float s[5]) {
   float frames, frames_i;
   averaged_frames(p.length[i], p.cap_indirect, frames, frames_i);
   const bool short_history = (frames < kShortHistory) & (p.depth[i] > 0.0f);
@@ -152,8 +151,8 @@ struct HalfVariancePass {
 };
 
 // Texel h from its box's moment sums `s`.
-BOUNCE_HD BOUNCE_DENOISE_INLINE void half_box_variance(const HalfVariancePass& p, size_t h,
-                                                       const float s[5]) {
+BOUNCE_HD BOUNCE_LANE_INLINE void half_box_variance(const HalfVariancePass& p, size_t h,
+                                                    const float s[5]) {
   float var_d, var_i;
   box_moment_variances(s, var_d, var_i);
   p.var[0][h] *= var_d;

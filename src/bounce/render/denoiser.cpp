@@ -97,8 +97,8 @@ void for_rows(int height, const Body& body) {
 // column tests, the interior without, in loops the compiler vectorises (a pass reads one set of
 // planes and writes another, so iterations are independent).
 template <typename Checked, typename Interior>
-BOUNCE_DENOISE_INLINE void row_loop(int width, int border, const Checked& checked,
-                                    const Interior& interior) {
+BOUNCE_LANE_INLINE void row_loop(int width, int border, const Checked& checked,
+                                 const Interior& interior) {
   const int x0 = std::min(border, width);
   const int x1 = std::max(width - border, x0);
   BOUNCE_IVDEP
@@ -188,11 +188,11 @@ void atrous_pass(const denoise::AtrousPass& pass) {
     constexpr denoise::Columns kInside = denoise::Columns::kInside;
     row_loop(
         p.width, border,
-        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
           denoise::atrous_geometry<kRadius, kIndirect, kMasked, kLuminanceDirect,
                                    kLuminanceIndirect>(p, rows, x, geometry + x, stride);
         },
-        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
           denoise::atrous_geometry<kRadius, kIndirect, kInside, kLuminanceDirect,
                                    kLuminanceIndirect>(p, rows, x, geometry + x, stride);
         });
@@ -200,11 +200,11 @@ void atrous_pass(const denoise::AtrousPass& pass) {
       constexpr bool kFiltered = kVariance && kLuminance;
       row_loop(
           p.width, border,
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
             denoise::atrous_light<kRadius, kMasked, kFiltered, kLuminance>(p, index, rows, x,
                                                                            geometry + x, stride);
           },
-          [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+          [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
             denoise::atrous_light<kRadius, kInside, kFiltered, kLuminance>(p, index, rows, x,
                                                                            geometry + x, stride);
           });
@@ -221,10 +221,10 @@ void compute_depth_slope(const float* depth, int w, int h, float* slope) {
     const size_t up = y > 0 ? row - size_t(w) : row, down = y + 1 < h ? row + size_t(w) : row;
     row_loop(
         w, 1,
-        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
           slope[row + size_t(x)] = denoise::depth_slope_pixel<true>(depth, w, row, up, down, x);
         },
-        [&](int x) BOUNCE_DENOISE_LAMBDA_INLINE {
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE {
           slope[row + size_t(x)] = denoise::depth_slope_pixel<false>(depth, w, row, up, down, x);
         });
   });
@@ -422,7 +422,7 @@ struct CpuPasses {
       for (int x = 0; x < p.width; ++x)
         denoise::upsample_from<kLights>(
             p, rows, x, y,
-            [&](int dx, int dy, const float* const*& c, size_t& h) BOUNCE_DENOISE_LAMBDA_INLINE {
+            [&](int dx, int dy, const float* const*& c, size_t& h) BOUNCE_LANE_LAMBDA_INLINE {
               c = dy ? row1 : row0;
               h = size_t(x + 2 * dx);  // entry x - 1 or x + 1 of the texels from d + 1
             },
