@@ -29,11 +29,11 @@ BOUNCE_HD inline vec3 fresnel_schlick(vec3 f0, float v_dot_h) {
   return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
-// GGX specular BRDF value (without the cosine) for unit wo (to the viewer) and wi (to the light).
-BOUNCE_HD inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, vec3 f0) {
-  const float n_dot_l = glm::dot(n, wi);
-  const float n_dot_v = glm::dot(n, wo);
-  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
+// The GGX specular BRDF value (without the cosine) for unit wo (to the viewer) and wi (to the
+// light) whose cosines n_dot_l and n_dot_v are both positive; with others it may be inf or NaN.
+// Branch-free, so that a row loop over pixels vectorises it (area_light_lane.h).
+BOUNCE_HD inline vec3 ggx_specular_front(vec3 n, vec3 wo, vec3 wi, float n_dot_l, float n_dot_v,
+                                         float roughness, vec3 f0) {
   const vec3 h = glm::normalize(wi + wo);
   const float r = glm::max(roughness, kMinRoughness);
   const float alpha = r * r;
@@ -43,6 +43,14 @@ BOUNCE_HD inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, ve
   const float d = ggx_distribution(n_dot_h * n_dot_h, glm::dot(across, across), alpha);
   const float g = schlick_ggx_g1(n_dot_l, k) * schlick_ggx_g1(n_dot_v, k);
   return fresnel_schlick(f0, glm::dot(wo, h)) * (d * g / (4.0f * n_dot_l * n_dot_v));
+}
+
+// GGX specular BRDF value (without the cosine) for unit wo (to the viewer) and wi (to the light).
+BOUNCE_HD inline vec3 ggx_specular(vec3 n, vec3 wo, vec3 wi, float roughness, vec3 f0) {
+  const float n_dot_l = glm::dot(n, wi);
+  const float n_dot_v = glm::dot(n, wo);
+  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
+  return ggx_specular_front(n, wo, wi, n_dot_l, n_dot_v, roughness, f0);
 }
 
 BOUNCE_HD inline vec3 lambert(vec3 albedo) {

@@ -27,6 +27,14 @@ struct ShadowBatch {
     blocked.resize(kCapacity);
   }
 
+  // Queues pixel i's ray; a full batch is traced at once.
+  void add(const Ray& ray, vec3 ray_radiance, uint32_t i, const Tracer& tracer, vec3* out) {
+    rays.push_back(ray);
+    radiance.push_back(ray_radiance);
+    pixel.push_back(i);
+    if (rays.size() == kCapacity) flush(tracer, out);
+  }
+
   void flush(const Tracer& tracer, vec3* out) {
     tracer.occluded(rays, std::span<uint8_t>(blocked.data(), rays.size()));
     traced += rays.size();
@@ -38,6 +46,41 @@ struct ShadowBatch {
   }
 };
 
+// A row of up to kWidth pixels of one tile, for the area-light row loop (compute_direct).
+struct AreaRow {
+  static constexpr int kWidth = 32;
+  vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current light
+  vec3 q[kWidth], q_normal[kWidth];
+  vec3 origin[kWidth], wi[kWidth], radiance[kWidth];
+  float distance[kWidth];
+};
+
+// The vector part of one light sample across row pixels i0 .. i0 + n - 1: area_light_lane at
+// each, where the G-buffer has a surface.
+void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
+                    const AreaLightView& light, float scale, AreaRow& row) {
+  BOUNCE_IVDEP
+  for (int j = 0; j < n; ++j) {
+    const size_t i = i0 + size_t(j);
+    const LaneSurface s = lane_surface(g, i, eye);
+    const LaneSample r = area_light_lane(s, load3(row.q, j), load3(row.q_normal, j), light.radiance,
+                                         light.area, scale);
+    store3(row.origin, j, s.origin);
+    store3(row.wi, j, r.wi);
+    row.distance[j] = r.distance;
+    store3(row.radiance, j, select3(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
+  }
+}
+
+// Whether compute_direct takes the row loop: every light is an area light and each is looped
+// over (direct_pixel's case), the Cornell box's and most OBJ scenes'. Other scenes take
+// direct_light_pixel per pixel.
+bool takes_area_rows(const SceneView& scene, const LightPickerView& lights,
+                     const DirectSettings& settings) {
+  return scene.light_count == 0 && scene.area_light_count > 0 &&
+         !resamples_lights(lights, settings);
+}
+
 }  // namespace
 
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
@@ -45,6 +88,66 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
   const ConstGBufferView view = g.view();
   vec3* pixels = out.pixels().data();
   tbb::enumerable_thread_specific<ShadowBatch> batches;
+  if (takes_area_rows(scene, lights, settings)) {
+    // Per tile row and light sample: the sampled points are picked per pixel (a search in the
+    // light's triangle table), area_light_lane runs across the row as vector code, then each
+    // sample goes to its pixel's selection or to the batch. Each pixel gets its samples in
+    // direct_pixel's order, so the frames are the per-pixel kernel's.
+    const int n = settings.light_samples;
+    const float inv_n = 1.0f / float(n);
+    parallel_for_tiles(g.width, g.height, AreaRow::kWidth, [&](int x0, int y0, int x1, int y1) {
+      ShadowBatch& b = batches.local();
+      AreaRow row;
+      ShadowSelection selections[AreaRow::kWidth];
+      const int width = x1 - x0;
+      for (int y = y0; y < y1; ++y) {
+        const size_t i0 = view.index(x0, y);
+        auto push = [&](int j) {
+          return [&b, &tracer, pixels, i = uint32_t(i0) + uint32_t(j)](
+                     const Ray& ray, vec3 radiance) { b.add(ray, radiance, i, tracer, pixels); };
+        };
+        for (int j = 0; j < width; ++j) {
+          pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
+          if (settings.one_shadow_ray)
+            selections[j] = ShadowSelection::for_pixel(uint32_t(i0) + uint32_t(j), settings);
+        }
+        for (uint32_t a = 0; a < scene.area_light_count; ++a) {
+          const AreaLightView& light = scene.area_lights[a];
+          const uint32_t light_id = scene.light_count + a + 1;
+          for (int j = 0; j < width; ++j)
+            row.offset[j] =
+                pattern_offset(uint32_t(i0) + uint32_t(j), light_id, settings.frame, settings.seed);
+          for (int k = 0; k < n; ++k) {
+            for (int j = 0; j < width; ++j) {
+              const AreaLightPoint q =
+                  sample_area_light_point(scene, light, area_light_pattern(k, n, row.offset[j]));
+              row.q[j] = q.position;
+              row.q_normal[j] = q.normal;
+            }
+            shade_area_row(view, i0, width, eye, light, inv_n, row);
+            for (int j = 0; j < width; ++j) {
+              const vec3 radiance = row.radiance[j];
+              if (!(max_component(radiance) > 0.0f)) continue;
+              const Ray ray = shadow_ray(row.origin[j], row.wi[j], row.distance[j]);
+              if (settings.one_shadow_ray)
+                selections[j](ray, radiance);
+              else
+                push(j)(ray, radiance);
+            }
+          }
+        }
+        if (settings.one_shadow_ray)
+          for (int j = 0; j < width; ++j) {
+            auto to_batch = push(j);
+            selections[j].finish(to_batch);
+          }
+      }
+      b.flush(tracer, pixels);
+    });
+    uint64_t total = 0;
+    for (const ShadowBatch& b : batches) total += b.traced;
+    return total;
+  }
   parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
     ShadowBatch& b = batches.local();
     for (int y = y0; y < y1; ++y)
@@ -52,10 +155,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         const uint32_t i = uint32_t(view.index(x, y));
         pixels[i] = view.emission[i];  // before the samples: a full batch adds to it at once
         auto shadow = [&](const Ray& ray, vec3 radiance) {
-          b.rays.push_back(ray);
-          b.radiance.push_back(radiance);
-          b.pixel.push_back(i);
-          if (b.rays.size() == ShadowBatch::kCapacity) b.flush(tracer, pixels);
+          b.add(ray, radiance, i, tracer, pixels);
         };
         direct_light_pixel(scene, lights, view, i, eye, settings, shadow);
       }

@@ -13,6 +13,7 @@
 #include "bounce/core/math.h"
 #include "bounce/core/qmc.h"
 #include "bounce/core/rng.h"
+#include "bounce/render/area_light_lane.h"
 #include "bounce/render/brdf.h"
 #include "bounce/render/bsdf_sampling.h"
 #include "bounce/render/gbuffer_view.h"
@@ -97,6 +98,23 @@ BOUNCE_HD void direct_environment(const SceneView& scene, const LightRecord& lig
   }
 }
 
+// Sample k of n of an area light, its pattern rotated by `offset` (pattern_offset).
+BOUNCE_HD inline vec2 area_light_pattern(int k, int n, vec2 offset) {
+  return rotate_unit(hammersley(k, n), offset);
+}
+
+// One sample of area light `light` at pattern point u, handed to shadow(ray, radiance) unless
+// nothing arrives (area_light_lane.h, the same arithmetic that direct.cpp's row loop runs).
+template <typename Shadow>
+BOUNCE_HD void area_light_offer(const SceneView& scene, const AreaLightView& light,
+                                const LaneSurface& lane, vec2 u, float scale, Shadow& shadow) {
+  const AreaLightPoint q = sample_area_light_point(scene, light, u);
+  const LaneSample r =
+      area_light_lane(lane, q.position, q.normal, light.radiance, light.area, scale);
+  if (max_component(r.radiance) > 0.0f)
+    shadow(shadow_ray(lane.origin, r.wi, r.distance), r.radiance);
+}
+
 // Direct light at pixel i of g as seen from `eye`: calls shadow(ray, radiance) for each light
 // sample whose radiance arrives if the ray is clear. The pixel's own emission (g.emission[i])
 // needs no ray: the launcher adds it.
@@ -141,12 +159,13 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
       if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
     }
   }
+  const LaneSurface lane = lane_surface(s, eye);
   for (uint32_t a = 0; a < scene.area_light_count; ++a) {
     ++light_id;
     const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
     for (int k = 0; k < n; ++k)
-      add(sample_area_light(scene, scene.area_lights[a], p, rotate_unit(hammersley(k, n), offset)),
-          inv_n);
+      area_light_offer(scene, scene.area_lights[a], lane, area_light_pattern(k, n, offset), inv_n,
+                       shadow);
   }
 }
 
@@ -218,7 +237,12 @@ struct ShadowSelection {
   float total = 0.0f;  // the sum over all samples offered
   Pcg32 rng;
 
+  ShadowSelection() = default;  // a placeholder until for_pixel
   BOUNCE_HD explicit ShadowSelection(uint32_t seed) : rng(seed, 0x2545F491u) {}
+  // Pixel i's selection in the frame `settings` names.
+  BOUNCE_HD static ShadowSelection for_pixel(uint32_t i, const DirectSettings& settings) {
+    return ShadowSelection(hash_u32(i ^ hash_u32(settings.frame * 0x9E3779B9u + settings.seed)));
+  }
   // Offers one sample (what direct_pixel hands its `shadow`).
   BOUNCE_HD void operator()(const Ray& r, vec3 sample_radiance) {
     const float w = luminance(sample_radiance);
@@ -257,7 +281,7 @@ BOUNCE_HD void direct_light_pixel(const SceneView& scene, const LightPickerView&
     samples(shadow);
     return;
   }
-  ShadowSelection selection(hash_u32(i ^ hash_u32(settings.frame * 0x9E3779B9u + settings.seed)));
+  ShadowSelection selection = ShadowSelection::for_pixel(i, settings);
   samples(selection);
   selection.finish(shadow);
 }

@@ -31,8 +31,11 @@ struct LightSample {
 // The shadow ray that tests a light sample from `origin` (a surface point already offset off its
 // surface): it stops just short of the sampled point, so the light's own surface (an emissive
 // triangle, a sphere light) does not block it. Direct light and the path tracer both use it.
+BOUNCE_HD inline Ray shadow_ray(vec3 origin, vec3 wi, float distance) {
+  return Ray{origin, 0.0f, wi, distance * (1.0f - 1e-4f)};
+}
 BOUNCE_HD inline Ray shadow_ray(vec3 origin, const LightSample& ls) {
-  return Ray{origin, 0.0f, ls.wi, ls.distance * (1.0f - 1e-4f)};
+  return shadow_ray(origin, ls.wi, ls.distance);
 }
 
 // Point, spot and directional lights: one deterministic sample.
