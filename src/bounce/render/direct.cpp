@@ -95,6 +95,9 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
     // direct_pixel's order, so the frames are the per-pixel kernel's.
     const int n = settings.light_samples;
     const float inv_n = 1.0f / float(n);
+    // With one sample per pixel (one light, one sample: the real-time setting) the selection
+    // keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
+    const bool select = settings.one_shadow_ray && scene.area_light_count * uint32_t(n) > 1;
     parallel_for_tiles(g.width, g.height, AreaRow::kWidth, [&](int x0, int y0, int x1, int y1) {
       ShadowBatch& b = batches.local();
       AreaRow row;
@@ -108,7 +111,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         };
         for (int j = 0; j < width; ++j) {
           pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
-          if (settings.one_shadow_ray)
+          if (select)
             selections[j] = ShadowSelection::for_pixel(uint32_t(i0) + uint32_t(j), settings);
         }
         for (uint32_t a = 0; a < scene.area_light_count; ++a) {
@@ -129,14 +132,14 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
               const vec3 radiance = row.radiance[j];
               if (!(max_component(radiance) > 0.0f)) continue;
               const Ray ray = shadow_ray(row.origin[j], row.wi[j], row.distance[j]);
-              if (settings.one_shadow_ray)
+              if (select)
                 selections[j](ray, radiance);
               else
                 push(j)(ray, radiance);
             }
           }
         }
-        if (settings.one_shadow_ray)
+        if (select)
           for (int j = 0; j < width; ++j) {
             auto to_batch = push(j);
             selections[j].finish(to_batch);
