@@ -21,6 +21,9 @@ struct EdgeSettings {
   bool show = false;       // debug view: re-estimated pixels in yellow
 
   EdgeTest test(float diagonal) const { return {normal, distance * diagonal, show}; }
+  // No pixel re-estimated for its normal or position (only blocks whose sample misses): where
+  // the denoiser's edge-stopping filter does the job.
+  static EdgeSettings none() { return {-1.0f, 1.0f}; }
 };
 
 // The edge test's parameters, under the same names for every technique that estimates at low

@@ -157,6 +157,29 @@ Image brute_force_gather(const GBuffer& g, const PhotonBuffer& photons, float ra
   return out;
 }
 
+// Frames that gather the kept passes after a camera move leave edge pixels to the denoiser's
+// filter (motion_edges off), where each edge gather would read every kept pass; frames at rest
+// re-estimate them, and motion_edges brings them back in motion.
+TEST(TiledReuse, CameraMovesReestimateNoEdgesUnlessAsked) {
+  for (const bool motion_edges : {false, true}) {
+    TiledRun run(4);
+    run.tiled->settings().lowres = 4;
+    run.tiled->settings().motion_lowres = 4;
+    run.tiled->settings().motion_edges = motion_edges;
+    const Camera a = run.scene.camera, b = moved_camera(a);
+    for (int k = 0; k < 3; ++k) run.render(a);
+    const size_t at_rest = run.tiled->edge_pixels();
+    ASSERT_TRUE(run.render(b).change.camera_only());
+    const size_t moved = run.tiled->edge_pixels();
+    // In a 40-pixel image of 4x4 blocks most blocks hold an edge of the box or its walls.
+    EXPECT_GT(at_rest, size_t(kSize * kSize / 20));
+    if (motion_edges)
+      EXPECT_GT(moved, size_t(kSize * kSize / 20));
+    else
+      EXPECT_LT(moved, at_rest / 4);  // only blocks whose sample misses the scene, if any
+  }
+}
+
 TEST(TiledReuse, CameraMoveGathersTheHeldPassesFreshFromTheNewView) {
   constexpr int kHistory = 4;
   TiledRun run(kHistory);

@@ -36,7 +36,7 @@ struct LhbTechniqueSettings {
   int lowres = 0;                 // paths at 1/lowres of the width and height; 0: auto
   // Which pixels a low-resolution estimate re-estimates at full resolution: none (no normal
   // agreement is below -1, no gap beyond the scene's diagonal).
-  EdgeSettings edges{-1.0f, 1.0f};
+  EdgeSettings edges = EdgeSettings::none();
   int seed = 0;
 };
 

@@ -26,6 +26,8 @@ TiledPhotonMapping::TiledPhotonMapping() {
   params_.add_int("lowres", &s.lowres, 1, 16, "indirect at 1/lowres of the width and height");
   params_.add_int("motion_lowres", &s.motion_lowres, 1, 16,
                   "lowres of frames that gather the kept passes after a camera move");
+  params_.add_bool("motion_edges", &s.motion_edges,
+                   "those frames re-estimate edge pixels too (off: the denoiser stops at edges)");
   params_.add_int("tile", &s.tile, 1, 256, "screen tile size, pixels");
   params_.add_int("gather", &s.gather, 0, 1, "density estimation: 0 screen tiles, 1 hash grid");
   params_.add_float("slab", &s.slab, 0.0, 1.0, "tangent slab half-thickness / radius");
@@ -168,7 +170,7 @@ void TiledPhotonMapping::estimate(const FrameContext& c, const PhotonBuffer& pho
   const TiledGatherView gather = gather_view(g, photons, plan);
   // Low resolution: bilinear upsampling of one gather per plan.lowres^2 block; pixels whose
   // normal or position disagrees with the interpolated one (edges) are gathered themselves.
-  const EdgeTest edges = settings_.edges.test(diagonal_);
+  const EdgeTest edges = (plan.edges ? settings_.edges : EdgeSettings::none()).test(diagonal_);
   edge_pixels_ = estimate_at_low_res(
       gather.g, plan.lowres, edges, [gather](int x, int y) { return gather_pixel(gather, x, y); },
       low_, out.view(), c.times);
@@ -234,7 +236,8 @@ void TiledPhotonMapping::indirect(const FrameContext& c, Image& out) {
     // Several passes' photons per gather: fewer gather points and the hash grid, whose build
     // costs next to nothing, keep the frame's cost bounded (README.md, "Photons kept across
     // camera moves").
-    plan = {union_radius(full_radius_, settings_.alpha, passes_), settings_.motion_lowres, true};
+    plan = {union_radius(full_radius_, settings_.alpha, passes_), settings_.motion_lowres, true,
+            settings_.motion_edges};
   } else if (fresh > 1) {
     // A boosted frame: its passes gathered together at the mean of their discs.
     ScopedStage stage(c.times, "indirect/photon union");

@@ -22,7 +22,11 @@ struct TiledSettings {
   int bounces = -1;          // -1: multi-bounce ended by Russian roulette; B: bounces 1..B
   int lowres = 2;            // indirect estimated at 1/lowres width and height (1: full)
   int motion_lowres = 4;     // the same, in frames that gather the kept passes after a camera move
-  int tile = 8;              // screen tile size of the tile gather, pixels
+  // Whether those frames re-estimate edge pixels (`edges`) too. Off: there the edge pixels' gathers
+  // read all the kept passes' photons and cost about 6 ms at 512x512, and the denoiser's filter
+  // stops at the same edges (README.md, "Photons kept across camera moves").
+  bool motion_edges = false;
+  int tile = 8;       // screen tile size of the tile gather, pixels
   int gather = 0;     // density estimation: 0 screen tiles (the seed's; faster here), 1 hash grid
   float slab = 0.1f;  // half-thickness of the tangent slab, relative to the radius
   bool leak_guard = true;     // per-photon clearance rays against light through thin walls
@@ -111,6 +115,7 @@ class TiledPhotonMapping final : public Technique {
     float radius = 0.0f;
     int lowres = 1;
     bool grid = false;  // the hash grid, else the screen tiles
+    bool edges = true;  // re-estimate edge pixels (settings_.edges) at full resolution
   };
   void estimate(const FrameContext& context, const PhotonBuffer& photons, const GatherPlan& plan,
                 Image& estimate);
