@@ -22,9 +22,9 @@ struct TiledSettings {
   int bounces = -1;          // -1: multi-bounce ended by Russian roulette; B: bounces 1..B
   int lowres = 2;            // indirect estimated at 1/lowres width and height (1: full)
   int motion_lowres = 4;     // the same, in frames that gather the kept passes after a camera move
-  // Whether those frames re-estimate edge pixels (`edges`) too. Off: there the edge pixels' gathers
-  // read all the kept passes' photons and cost about 6 ms at 512x512, and the denoiser's filter
-  // stops at the same edges (README.md, "Photons kept across camera moves").
+  // Whether those frames re-estimate edge pixels (`edges`) too. Off: there each edge pixel's
+  // gather reads all the kept passes' photons, which cost 2-6 ms a frame at 512x512, and the
+  // denoiser's filter stops at the same edges (README.md, "Photons kept across camera moves").
   bool motion_edges = false;
   int tile = 8;       // screen tile size of the tile gather, pixels
   int gather = 0;     // density estimation: 0 screen tiles (the seed's; faster here), 1 hash grid
