@@ -4,15 +4,16 @@
 // does not take). It gives what area_light_sample followed by shade_light_sample gives.
 //
 // GCC vectorises a row loop over it only if the body is one basic block: every value is computed
-// whether or not it is used and the unused ones are selected away (so a NaN from a degenerate
-// sample never reaches a result), structs are built from scalars rather than copied whole, and
-// the file is compiled with -fno-trapping-math -fno-math-errno (src/CMakeLists.txt).
+// whether or not it is used and the unused ones are selected away (`pick`: so a NaN from a
+// degenerate sample never reaches a result), structs are built from scalars rather than copied
+// whole, and the file is compiled with -fno-trapping-math -fno-math-errno (src/CMakeLists.txt).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/brdf.h"
 #include "bounce/render/gbuffer_view.h"
@@ -36,20 +37,6 @@ struct LaneSample {
   float distance;  // to the sampled point
   vec3 radiance;   // what reaches the eye if the shadow ray is clear; 0 where nothing can
 };
-
-BOUNCE_HD BOUNCE_LANE_INLINE vec3 select3(bool c, vec3 a, vec3 b) {
-  return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
-}
-// Element i of a vec3 array, read component by component (a whole-struct copy is what stops the
-// vectoriser).
-BOUNCE_HD BOUNCE_LANE_INLINE vec3 load3(const vec3* a, size_t i) {
-  return {a[i].x, a[i].y, a[i].z};
-}
-BOUNCE_HD BOUNCE_LANE_INLINE void store3(vec3* a, size_t i, vec3 v) {
-  a[i].x = v.x;
-  a[i].y = v.y;
-  a[i].z = v.z;
-}
 
 // The lane surface of a G-buffer surface seen from `eye`. (Filled field by field into a named
 // value: a braced return is a whole-struct copy to GCC.)
@@ -95,12 +82,12 @@ BOUNCE_HD BOUNCE_LANE_INLINE LaneSample area_light_lane(const LaneSurface& s, ve
   const vec3 specular =
       ggx_specular_front(s.normal, s.wo, out.wi, cos_theta, n_dot_v, s.roughness, s.f0);
   const bool glossy = (max_component(s.f0) > 0.0f) & (n_dot_v > 0.0f);
-  const vec3 f = lambert(s.albedo) + select3(glossy, specular, vec3(0.0f));
+  const vec3 f = lambert(s.albedo) + pick(glossy, specular, vec3(0.0f));
   const vec3 radiance = f * weight * (cos_theta * scale);
   // In front of the light's face and of the surface's (the shading normal and the face itself).
   const bool arrives = (d2 > 0.0f) & (cos_light > 0.0f) & (cos_theta > 0.0f) &
                        (glm::dot(s.geometric_normal, out.wi) > 0.0f);
-  out.radiance = select3(arrives, radiance, vec3(0.0f));
+  out.radiance = pick(arrives, radiance, vec3(0.0f));
   return out;
 }
 

@@ -10,13 +10,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <utility>
-#if !BOUNCE_DEVICE_CODE
-#include <bit>
-#endif
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/gbuffer_view.h"
+#if !BOUNCE_DEVICE_CODE
+#include <bit>  // exp2_weight
+#endif
 
 namespace bounce::denoise {
 
@@ -145,26 +146,6 @@ BOUNCE_HD inline bool reflects_light(vec3 albedo, vec3 f0) {
 BOUNCE_HD inline vec3 demodulation_factor(vec3 albedo) {
   return {albedo.x > kAlbedoFloor ? albedo.x : 1.0f, albedo.y > kAlbedoFloor ? albedo.y : 1.0f,
           albedo.z > kAlbedoFloor ? albedo.z : 1.0f};
-}
-
-// c ? a : b as bit operations: no branch for the compiler to thread on, so a row loop full of
-// them stays one basic block and vectorises.
-BOUNCE_HD BOUNCE_LANE_INLINE uint32_t pick(bool c, uint32_t a, uint32_t b) {
-  const uint32_t m = 0u - uint32_t(c);
-  return (a & m) | (b & ~m);
-}
-BOUNCE_HD BOUNCE_LANE_INLINE float pick(bool c, float a, float b) {
-#if BOUNCE_DEVICE_CODE
-  return c ? a : b;
-#else
-  return std::bit_cast<float>(pick(c, std::bit_cast<uint32_t>(a), std::bit_cast<uint32_t>(b)));
-#endif
-}
-BOUNCE_HD BOUNCE_LANE_INLINE vec3 pick(bool c, vec3 a, vec3 b) {
-  return {pick(c, a.x, b.x), pick(c, a.y, b.y), pick(c, a.z, b.z)};
-}
-BOUNCE_HD BOUNCE_LANE_INLINE vec4 pick(bool c, vec4 a, vec4 b) {
-  return {pick(c, a.x, b.x), pick(c, a.y, b.y), pick(c, a.z, b.z), pick(c, a.w, b.w)};
 }
 
 // 2^x for x <= 0, and exactly 0 below -126: the filter's weights. On the CPU a cubic (relative

@@ -68,7 +68,7 @@ void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
     store3(row.origin, j, s.origin);
     store3(row.wi, j, r.wi);
     row.distance[j] = r.distance;
-    store3(row.radiance, j, select3(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
+    store3(row.radiance, j, pick(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
   }
 }
 
@@ -116,14 +116,13 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         }
         for (uint32_t a = 0; a < scene.area_light_count; ++a) {
           const AreaLightView& light = scene.area_lights[a];
-          const uint32_t light_id = scene.light_count + a + 1;
           for (int j = 0; j < width; ++j)
-            row.offset[j] =
-                pattern_offset(uint32_t(i0) + uint32_t(j), light_id, settings.frame, settings.seed);
+            row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
+                                           settings.frame, settings.seed);
           for (int k = 0; k < n; ++k) {
             for (int j = 0; j < width; ++j) {
               const AreaLightPoint q =
-                  sample_area_light_point(scene, light, area_light_pattern(k, n, row.offset[j]));
+                  sample_area_light_point(scene, light, pattern_sample(k, n, row.offset[j]));
               row.q[j] = q.position;
               row.q_normal[j] = q.normal;
             }
@@ -147,23 +146,21 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
       }
       b.flush(tracer, pixels);
     });
-    uint64_t total = 0;
-    for (const ShadowBatch& b : batches) total += b.traced;
-    return total;
+  } else {
+    parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
+      ShadowBatch& b = batches.local();
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const uint32_t i = uint32_t(view.index(x, y));
+          pixels[i] = view.emission[i];  // before the samples: a full batch adds to it at once
+          auto shadow = [&](const Ray& ray, vec3 radiance) {
+            b.add(ray, radiance, i, tracer, pixels);
+          };
+          direct_light_pixel(scene, lights, view, i, eye, settings, shadow);
+        }
+      b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
+    });
   }
-  parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
-    ShadowBatch& b = batches.local();
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const uint32_t i = uint32_t(view.index(x, y));
-        pixels[i] = view.emission[i];  // before the samples: a full batch adds to it at once
-        auto shadow = [&](const Ray& ray, vec3 radiance) {
-          b.add(ray, radiance, i, tracer, pixels);
-        };
-        direct_light_pixel(scene, lights, view, i, eye, settings, shadow);
-      }
-    b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
-  });
   uint64_t total = 0;
   for (const ShadowBatch& b : batches) total += b.traced;
   return total;

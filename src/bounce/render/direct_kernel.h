@@ -52,6 +52,11 @@ BOUNCE_HD inline vec2 pattern_offset(uint32_t pixel, uint32_t light, uint32_t fr
   return {bits_to_unit_float(h), bits_to_unit_float(hash_u32(h ^ 0x68E31DA4u))};
 }
 
+// Sample k of a light's n, its pattern rotated by `offset` (pattern_offset).
+BOUNCE_HD inline vec2 pattern_sample(int k, int n, vec2 offset) {
+  return rotate_unit(hammersley(k, n), offset);
+}
+
 // Hands one light sample (from p, towards ls.wi) to shadow(ray, radiance) with the BRDF, cosine
 // and `scale` applied, unless it arrives from below the surface or carries nothing.
 template <typename Shadow>
@@ -78,12 +83,11 @@ BOUNCE_HD void direct_environment(const SceneView& scene, const LightRecord& lig
   const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
   const vec2 offset_bsdf = pattern_offset(i, light_id ^ 0x5BD1E995u, settings.frame, settings.seed);
   for (int k = 0; k < n; ++k) {
-    const LightSample ls =
-        sample_environment_light(scene, light, rotate_unit(hammersley(k, n), offset));
+    const LightSample ls = sample_environment_light(scene, light, pattern_sample(k, n, offset));
     if (ls.valid())
       shade_light_sample(s, wo, p, ls, inv_n * power_heuristic(ls.pdf, bsdf_pdf(s, wo, ls.wi)),
                          shadow);
-    const vec2 ub = rotate_unit(hammersley(k, n), offset_bsdf);
+    const vec2 ub = pattern_sample(k, n, offset_bsdf);
     const float u_lobe = bits_to_unit_float(hash_u32(i ^ hash_u32(uint32_t(k) ^ light_id)) ^
                                             hash_u32(settings.frame + settings.seed));
     const BsdfSample b = sample_bsdf(s, wo, u_lobe, ub);
@@ -98,9 +102,10 @@ BOUNCE_HD void direct_environment(const SceneView& scene, const LightRecord& lig
   }
 }
 
-// Sample k of n of an area light, its pattern rotated by `offset` (pattern_offset).
-BOUNCE_HD inline vec2 area_light_pattern(int k, int n, vec2 offset) {
-  return rotate_unit(hammersley(k, n), offset);
+// The id that rotates area light a's sample pattern (pattern_offset): the scene's lights are
+// 1 .. light_count, its area lights follow.
+BOUNCE_HD inline uint32_t area_light_id(const SceneView& scene, uint32_t a) {
+  return scene.light_count + a + 1;
 }
 
 // One sample of area light `light` at pattern point u, handed to shadow(ray, radiance) unless
@@ -151,7 +156,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
     const vec3 specular = sphere_light_specular(light, s, p, wo) * inv_n;
     const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
     for (int k = 0; k < n; ++k) {
-      const LightSample ls = sample_sphere_light(light, p, rotate_unit(hammersley(k, n), offset));
+      const LightSample ls = sample_sphere_light(light, p, pattern_sample(k, n, offset));
       if (!ls.valid() || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) continue;
       const float cos_theta = glm::max(glm::dot(s.normal, ls.wi), 0.0f);
       const vec3 radiance =
@@ -161,10 +166,9 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
   }
   const LaneSurface lane = lane_surface(s, eye);
   for (uint32_t a = 0; a < scene.area_light_count; ++a) {
-    ++light_id;
-    const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+    const vec2 offset = pattern_offset(i, area_light_id(scene, a), settings.frame, settings.seed);
     for (int k = 0; k < n; ++k)
-      area_light_offer(scene, scene.area_lights[a], lane, area_light_pattern(k, n, offset), inv_n,
+      area_light_offer(scene, scene.area_lights[a], lane, pattern_sample(k, n, offset), inv_n,
                        shadow);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
@@ -133,10 +134,10 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
   // At lowres > 1 the paths start from one pixel per lowres^2 block, upsampled, and from every
   // pixel where normals or positions disagree (the code tiled shares, render/lowres_kernels.h).
   const EdgeTest edges = settings_.edges.test(diagonal_);
-  if (lowres <= 1) {
-    ScopedStage stage(context.times, "indirect/gather");
-    edge_pixels_ = estimate_at_low_res(view, 1, edges, paths, low_, incoming_view, context.times);
-  } else {
+  {
+    // estimate_at_low_res times its low-resolution stages; paths at every pixel are timed here.
+    std::optional<ScopedStage> every_pixel;
+    if (lowres <= 1) every_pixel.emplace(context.times, "indirect/gather");
     edge_pixels_ =
         estimate_at_low_res(view, lowres, edges, paths, low_, incoming_view, context.times);
   }
