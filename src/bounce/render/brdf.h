@@ -31,7 +31,7 @@ BOUNCE_HD inline vec3 fresnel_schlick(vec3 f0, float v_dot_h) {
 
 // The GGX specular BRDF value (without the cosine) for unit wo (to the viewer) and wi (to the
 // light) whose cosines n_dot_l and n_dot_v are both positive; with others it may be inf or NaN.
-// Branch-free, so that a row loop over pixels vectorises it (area_light_lane.h).
+// Branch-free, so that a row loop over pixels vectorises it (light_lane.h).
 BOUNCE_HD inline vec3 ggx_specular_front(vec3 n, vec3 wo, vec3 wi, float n_dot_l, float n_dot_v,
                                          float roughness, vec3 f0) {
   const vec3 h = glm::normalize(wi + wo);

@@ -46,25 +46,25 @@ struct ShadowBatch {
   }
 };
 
-// A row of up to kWidth pixels of one tile, for the area-light row loop (compute_direct).
-struct AreaRow {
+// A row of up to kWidth pixels of one tile, for the row loop (compute_direct).
+struct LightRow {
   static constexpr int kWidth = 32;
-  vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current light
+  vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current area light
   vec3 q[kWidth], q_normal[kWidth];
   vec3 origin[kWidth], wi[kWidth], radiance[kWidth];
   float distance[kWidth];
 };
 
-// The vector part of one light sample across row pixels i0 .. i0 + n - 1: area_light_lane at
-// each, where the G-buffer has a surface.
-void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
-                    const AreaLightView& light, float scale, AreaRow& row) {
+// The vector part of one light sample across row pixels i0 .. i0 + n - 1: sample(surface, j)
+// (a lane of light_lane.h) at each, where the G-buffer has a surface.
+template <typename Sample>
+BOUNCE_LANE_INLINE void shade_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
+                                  LightRow& row, const Sample& sample) {
   BOUNCE_IVDEP
   for (int j = 0; j < n; ++j) {
     const size_t i = i0 + size_t(j);
     const LaneSurface s = lane_surface(g, i, eye);
-    const LaneSample r = area_light_lane(s, load3(row.q, j), load3(row.q_normal, j), light.radiance,
-                                         light.area, scale);
+    const LaneSample r = sample(s, j);
     store3(row.origin, j, s.origin);
     store3(row.wi, j, r.wi);
     row.distance[j] = r.distance;
@@ -72,36 +72,55 @@ void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
   }
 }
 
-// Whether compute_direct takes the row loop: every light is an area light and each is looped
-// over (direct_pixel's case), the Cornell box's and most OBJ scenes'. Other scenes take
-// direct_light_pixel per pixel.
-bool takes_area_rows(const SceneView& scene, const LightPickerView& lights,
-                     const DirectSettings& settings) {
-  return scene.light_count == 0 && scene.area_light_count > 0 &&
-         !resamples_lights(lights, settings);
+void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
+                    const AreaLightView& light, float scale, LightRow& row) {
+  const vec3 radiance = light.radiance;
+  const float area = light.area;
+  shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int j) {
+    return area_light_lane(s, load3(row.q, j), load3(row.q_normal, j), radiance, area, scale);
+  });
+}
+
+void shade_punctual_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
+                        const PunctualLane& light, LightRow& row) {
+  shade_row(g, i0, n, eye, row,
+            [&](const LaneSurface& s, int) { return punctual_light_lane(s, light, 1.0f); });
 }
 
 }  // namespace
+
+bool direct_takes_rows(const SceneView& scene, const LightPickerView& lights,
+                       const DirectSettings& settings) {
+  if (scene.light_count + scene.area_light_count == 0 || resamples_lights(lights, settings))
+    return false;
+  for (uint32_t l = 0; l < scene.light_count; ++l)
+    if (!is_punctual(scene.lights[l].type)) return false;
+  return true;
+}
 
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
   const ConstGBufferView view = g.view();
   vec3* pixels = out.pixels().data();
   tbb::enumerable_thread_specific<ShadowBatch> batches;
-  if (takes_area_rows(scene, lights, settings)) {
-    // Per tile row and light sample: the sampled points are picked per pixel (a search in the
-    // light's triangle table), area_light_lane runs across the row as vector code, then each
-    // sample goes to its pixel's selection or to the batch. Each pixel gets its samples in
-    // direct_pixel's order, so the frames are the per-pixel kernel's.
+  if (direct_takes_rows(scene, lights, settings)) {
+    // Per tile row and light sample: a light_lane.h lane runs across the row as vector code
+    // (for an area light after a scalar loop picks each pixel's point on it: a search in the
+    // light's triangle table), then each sample goes to its pixel's selection or to the batch.
+    // Each pixel gets its samples in direct_pixel's order, so the frames are the per-pixel
+    // kernel's.
     const int n = settings.light_samples;
     const float inv_n = 1.0f / float(n);
-    // With one sample per pixel (one light, one sample: the real-time setting) the selection
-    // keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
-    const bool select = settings.one_shadow_ray && scene.area_light_count * uint32_t(n) > 1;
-    parallel_for_tiles(g.width, g.height, AreaRow::kWidth, [&](int x0, int y0, int x1, int y1) {
+    std::vector<PunctualLane> punctual(scene.light_count);
+    for (uint32_t l = 0; l < scene.light_count; ++l) punctual[l] = punctual_lane(scene.lights[l]);
+    // With one sample per pixel (one light, one sample: the Cornell box in real time) the
+    // selection keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
+    const bool select =
+        settings.one_shadow_ray && scene.light_count + scene.area_light_count * uint32_t(n) > 1;
+    parallel_for_tiles(g.width, g.height, LightRow::kWidth, [&](int x0, int y0, int x1, int y1) {
       ShadowBatch& b = batches.local();
-      AreaRow row;
-      ShadowSelection selections[AreaRow::kWidth];
+      LightRow row;
+      ShadowSelection selections[LightRow::kWidth];
       const int width = x1 - x0;
       for (int y = y0; y < y1; ++y) {
         const size_t i0 = view.index(x0, y);
@@ -109,10 +128,26 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
           return [&b, &tracer, pixels, i = uint32_t(i0) + uint32_t(j)](
                      const Ray& ray, vec3 radiance) { b.add(ray, radiance, i, tracer, pixels); };
         };
+        // The row's samples of one light, from `row`, to their selections or the batch.
+        auto hand_off = [&] {
+          for (int j = 0; j < width; ++j) {
+            const vec3 radiance = row.radiance[j];
+            if (!(max_component(radiance) > 0.0f)) continue;
+            const Ray ray = shadow_ray(row.origin[j], row.wi[j], row.distance[j]);
+            if (select)
+              selections[j](ray, radiance);
+            else
+              push(j)(ray, radiance);
+          }
+        };
         for (int j = 0; j < width; ++j) {
           pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
           if (select)
             selections[j] = ShadowSelection::for_pixel(uint32_t(i0) + uint32_t(j), settings);
+        }
+        for (const PunctualLane& light : punctual) {
+          shade_punctual_row(view, i0, width, eye, light, row);
+          hand_off();
         }
         for (uint32_t a = 0; a < scene.area_light_count; ++a) {
           const AreaLightView& light = scene.area_lights[a];
@@ -127,15 +162,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
               row.q_normal[j] = q.normal;
             }
             shade_area_row(view, i0, width, eye, light, inv_n, row);
-            for (int j = 0; j < width; ++j) {
-              const vec3 radiance = row.radiance[j];
-              if (!(max_component(radiance) > 0.0f)) continue;
-              const Ray ray = shadow_ray(row.origin[j], row.wi[j], row.distance[j]);
-              if (select)
-                selections[j](ray, radiance);
-              else
-                push(j)(ray, radiance);
-            }
+            hand_off();
           }
         }
         if (select)

@@ -13,10 +13,10 @@
 #include "bounce/core/math.h"
 #include "bounce/core/qmc.h"
 #include "bounce/core/rng.h"
-#include "bounce/render/area_light_lane.h"
 #include "bounce/render/brdf.h"
 #include "bounce/render/bsdf_sampling.h"
 #include "bounce/render/gbuffer_view.h"
+#include "bounce/render/light_lane.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/light_sampling.h"
 #include "bounce/scene/environment.h"
@@ -108,16 +108,21 @@ BOUNCE_HD inline uint32_t area_light_id(const SceneView& scene, uint32_t a) {
   return scene.light_count + a + 1;
 }
 
+// Hands a lane's sample to shadow(ray, radiance) unless nothing arrives.
+template <typename Shadow>
+BOUNCE_HD void offer_lane_sample(const LaneSurface& lane, const LaneSample& r, Shadow& shadow) {
+  if (max_component(r.radiance) > 0.0f)
+    shadow(shadow_ray(lane.origin, r.wi, r.distance), r.radiance);
+}
+
 // One sample of area light `light` at pattern point u, handed to shadow(ray, radiance) unless
-// nothing arrives (area_light_lane.h, the same arithmetic that direct.cpp's row loop runs).
+// nothing arrives (light_lane.h, the same arithmetic that direct.cpp's row loop runs).
 template <typename Shadow>
 BOUNCE_HD void area_light_offer(const SceneView& scene, const AreaLightView& light,
                                 const LaneSurface& lane, vec2 u, float scale, Shadow& shadow) {
   const AreaLightPoint q = sample_area_light_point(scene, light, u);
-  const LaneSample r =
-      area_light_lane(lane, q.position, q.normal, light.radiance, light.area, scale);
-  if (max_component(r.radiance) > 0.0f)
-    shadow(shadow_ray(lane.origin, r.wi, r.distance), r.radiance);
+  offer_lane_sample(
+      lane, area_light_lane(lane, q.position, q.normal, light.radiance, light.area, scale), shadow);
 }
 
 // Direct light at pixel i of g as seen from `eye`: calls shadow(ray, radiance) for each light
@@ -133,9 +138,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
   const vec3 p = offset_origin(s.position, s.geometric_normal);
   const int n = settings.light_samples;
   const float inv_n = 1.0f / float(n);
-  auto add = [&](const LightSample& ls, float scale) {
-    shade_light_sample(s, wo, p, ls, scale, shadow);
-  };
+  const LaneSurface lane = lane_surface(s, eye);
 
   uint32_t light_id = 0;
   for (uint32_t l = 0; l < scene.light_count; ++l) {
@@ -145,8 +148,8 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
       direct_environment(scene, light, light_id, s, wo, p, i, settings, shadow);
       continue;
     }
-    if (light.type != LightType::kSphere) {
-      add(sample_punctual_light(light, p), 1.0f);
+    if (is_punctual(light.type)) {
+      offer_lane_sample(lane, punctual_light_lane(lane, punctual_lane(light), 1.0f), shadow);
       continue;
     }
     // Diffuse from cone samples; GGX specular from Karis' representative point, shadowed by
@@ -164,7 +167,6 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
       if (max_component(radiance) > 0.0f) shadow(shadow_ray(p, ls), radiance);
     }
   }
-  const LaneSurface lane = lane_surface(s, eye);
   for (uint32_t a = 0; a < scene.area_light_count; ++a) {
     const vec2 offset = pattern_offset(i, area_light_id(scene, a), settings.frame, settings.seed);
     for (int k = 0; k < n; ++k)

@@ -10,6 +10,12 @@ namespace bounce {
 
 enum class LightType { kPoint, kSpot, kDirectional, kSphere, kEnvironment };
 
+// Point, spot and directional lights: one deterministic sample each, from a single point or
+// direction (sample_punctual_light).
+BOUNCE_HD inline bool is_punctual(LightType t) {
+  return t == LightType::kPoint || t == LightType::kSpot || t == LightType::kDirectional;
+}
+
 // Everything a light is except its name: plain data that kernels copy and read (SceneView).
 struct LightRecord {
   LightType type = LightType::kPoint;
