@@ -91,6 +91,44 @@ TEST(PhotonKdTree, HeapKeepsTheClosest) {
   EXPECT_EQ(v[2].second, 7u);
 }
 
+// Every inner node's median photon splits its range on its axis: nothing before it is greater,
+// nothing after it smaller. Photons on a coarse lattice share coordinates by the thousand (as
+// photons on a level's axis-aligned walls do), which a median search must not stumble on.
+void expect_nodes_split_at_their_median(const PhotonKdTreeView& t, uint32_t from, uint32_t to) {
+  if (kd_is_leaf(from, to, t.leaf_size)) return;
+  const uint32_t mid = kd_middle(from, to);
+  const int a = t.axis[mid];
+  const float split = t.position[mid][a];
+  for (uint32_t i = from; i < mid; ++i) ASSERT_LE(t.position[i][a], split) << i;
+  for (uint32_t i = mid + 1; i < to; ++i) ASSERT_GE(t.position[i][a], split) << i;
+  expect_nodes_split_at_their_median(t, from, mid);
+  expect_nodes_split_at_their_median(t, mid + 1, to);
+}
+
+TEST(PhotonKdTree, EveryNodeSplitsAtItsMedian) {
+  Pcg32 rng(3);
+  MapPhotons lattice;
+  for (int i = 0; i < 50000; ++i) {
+    lattice.position.push_back(vec3(float(rng.next_u32() % 5), float(rng.next_u32() % 3),
+                                    i % 7 ? 0.0f : rng.next_float()));
+    lattice.flux.push_back(vec3(1.0f));
+    lattice.normal.push_back(vec3(0, 1, 0));
+  }
+  for (const MapPhotons& photons : {lattice, random_photons(30000, 4)})
+    for (const uint32_t leaf : {1u, 8u}) {
+      PhotonKdTree tree;
+      tree.build(photons, leaf);
+      const PhotonKdTreeView view = tree.view();
+      ASSERT_EQ(view.count, photons.size());
+      expect_nodes_split_at_their_median(view, 0, view.count);
+      // The tree holds each photon once, with its own flux and normal.
+      double flux = 0.0, expected = 0.0;
+      for (uint32_t i = 0; i < view.count; ++i) flux += double(view.flux[i].x);
+      for (const vec3& f : photons.flux) expected += double(f.x);
+      EXPECT_NEAR(flux, expected, 1e-6 * expected);
+    }
+}
+
 TEST(PhotonKdTree, EmptyAndTinyMaps) {
   PhotonKdTree tree;
   tree.build(MapPhotons{}, 8);
