@@ -119,8 +119,9 @@ TEST(PunctualLightLane, EqualsTheLightSampleAndItsShading) {
 }
 
 // The Cornell box, its tall box glossy so the GGX lobe is in the rows too; with `punctual`, also
-// lit by a point light, a spot from the camera whose cone edge crosses the back wall, and the sun
-// through the open front.
+// lit by a point light, a spot from the camera whose cone edge crosses the back wall, the sun
+// through the open front, and a glowing strip of 13 triangles of unequal areas on the left wall
+// (an area light whose triangle table takes several search steps).
 struct CornellDirect {
   static constexpr int kSize = 48;
   Scene scene;
@@ -136,6 +137,26 @@ struct CornellDirect {
       s.lights.push_back(Light::spot(vec3(0.278f, 0.273f, -0.6f), vec3(0.1f, -0.05f, 1.0f),
                                      vec3(0.3f, 0.2f, 0.1f), 8.0f, 16.0f));
       s.lights.push_back(Light::directional(vec3(-0.3f, -0.6f, 1.0f), vec3(0.8f, 0.8f, 1.0f)));
+      Material glow;
+      glow.name = "glow";
+      glow.albedo = vec3(0.0f);
+      glow.emission = vec3(2.0f, 3.0f, 1.0f);
+      s.materials.push_back(glow);
+      Mesh strip;
+      strip.name = "strip";
+      // A fan just inside the wall at x = 0.556 (the left one on screen): vertices along two lines.
+      float z = 0.05f;
+      for (int t = 0; t <= 13; ++t) {
+        strip.positions.push_back(vec3(0.54f, 0.1f + 0.02f * float(t % 3), z));
+        strip.positions.push_back(vec3(0.54f, 0.4f, z));
+        z += 0.01f + 0.006f * float((t * 7) % 5);
+      }
+      for (uint32_t t = 0; t < 13; ++t) {
+        // Wound so the face normal points to -x, into the room.
+        strip.triangles.push_back(uvec3(2 * t, 2 * t + 2, 2 * t + 1));
+        strip.materials.push_back(uint32_t(s.materials.size() - 1));
+      }
+      s.meshes.push_back(strip);
     }
     for (MaterialRecord& m : s.materials)
       if (max_component(m.emission) <= 0.0f && m.albedo.x > 0.5f && m.albedo.y > 0.5f) {
@@ -203,7 +224,8 @@ TEST(AreaLightRows, EqualThePerPixelKernel) {
 TEST(LightRows, PointSpotSunAndAreaLightsEqualThePerPixelKernel) {
   const CornellDirect c(/*punctual=*/true);
   ASSERT_EQ(c.data.view().light_count, 3u);
-  ASSERT_GT(c.data.view().area_light_count, 0u);
+  ASSERT_EQ(c.data.view().area_light_count, 2u);
+  EXPECT_EQ(c.data.view().area_lights[1].triangle_count, 13u);
   expect_rows_equal_per_pixel(c);
   // Each punctual light adds light somewhere: the frame without them is darker.
   const CornellDirect area_only;

@@ -28,16 +28,29 @@ BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
 // Entry k owns [cdf[k - 1], cdf[k]) (cdf[-1] = 0), so u on a boundary goes to the entry above it
 // and an entry of zero probability is never chosen; u at or above cdf[count - 1] gives the last
 // entry. count must be at least 1; cdf must not decrease.
+//
+// The search is branch-free and takes the same number of steps for every u (cdf_halve), so a row
+// of pixels can run their searches in lockstep (render/direct.cpp): no mispredicted branch, and
+// one pixel's loads overlap the others'.
+// One step over the `len` entries from `base` that may hold u's (half = len / 2, then len shrinks
+// by half): the first half are passed over if entry base + half ends at or below u. cdf_entry
+// finishes once len is 1.
+BOUNCE_HD inline uint32_t cdf_halve(const float* cdf, uint32_t base, uint32_t half, float u) {
+  return cdf[base + half] <= u ? base + half : base;
+}
+BOUNCE_HD inline uint32_t cdf_entry(const float* cdf, uint32_t base, uint32_t count, float u) {
+  const uint32_t entry = base + (cdf[base] <= u ? 1u : 0u);
+  return entry < count ? entry : count - 1;
+}
 BOUNCE_HD inline CdfSample sample_cdf(const float* cdf, size_t count, float u) {
-  uint32_t lo = 0, hi = uint32_t(count) - 1;
-  while (lo < hi) {
-    const uint32_t mid = (lo + hi) / 2;
-    if (u < cdf[mid])
-      hi = mid;
-    else
-      lo = mid + 1;
+  uint32_t base = 0;
+  for (uint32_t len = uint32_t(count); len > 1;) {
+    const uint32_t half = len / 2;
+    base = cdf_halve(cdf, base, half, u);
+    len -= half;
   }
-  return {lo, cdf_stretch(cdf, lo, u)};
+  const uint32_t entry = cdf_entry(cdf, base, uint32_t(count), u);
+  return {entry, cdf_stretch(cdf, entry, u)};
 }
 
 }  // namespace bounce

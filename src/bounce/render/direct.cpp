@@ -50,10 +50,39 @@ struct ShadowBatch {
 struct LightRow {
   static constexpr int kWidth = 32;
   vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current area light
+  vec2 u[kWidth];
+  uint32_t base[kWidth];
   vec3 q[kWidth], q_normal[kWidth];
   vec3 origin[kWidth], wi[kWidth], radiance[kWidth];
   float distance[kWidth];
 };
+
+// Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
+// the searches of the light's triangle table run in lockstep (sample_cdf's steps, one at a time
+// for every pixel: no branch to mispredict, and the pixels' loads overlap).
+void pick_area_light_row(const SceneView& scene, const AreaLightView& light, int k, int n,
+                         int width, LightRow& row) {
+  const float* cdf = light.cdf;
+  const uint32_t count = light.triangle_count;
+  for (int j = 0; j < width; ++j) {
+    row.u[j] = pattern_sample(k, n, row.offset[j]);
+    row.base[j] = 0;
+  }
+  for (uint32_t len = count; len > 1;) {
+    const uint32_t half = len / 2;
+    for (int j = 0; j < width; ++j) row.base[j] = cdf_halve(cdf, row.base[j], half, row.u[j].x);
+    len -= half;
+  }
+  for (int j = 0; j < width; ++j) {
+    const float ux = row.u[j].x;
+    const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
+    const AreaLightPoint q =
+        area_light_point_at(scene.meshes, light.triangles, light.normals,
+                            {entry, vec2(cdf_stretch(cdf, entry, ux), row.u[j].y)});
+    row.q[j] = q.position;
+    row.q_normal[j] = q.normal;
+  }
+}
 
 // The vector part of one light sample across row pixels i0 .. i0 + n - 1: sample(surface, j)
 // (a lane of light_lane.h) at each, where the G-buffer has a surface.
@@ -155,12 +184,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
             row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
                                            settings.frame, settings.seed);
           for (int k = 0; k < n; ++k) {
-            for (int j = 0; j < width; ++j) {
-              const AreaLightPoint q =
-                  sample_area_light_point(scene, light, pattern_sample(k, n, row.offset[j]));
-              row.q[j] = q.position;
-              row.q_normal[j] = q.normal;
-            }
+            pick_area_light_row(scene, light, k, n, width, row);
             shade_area_row(view, i0, width, eye, light, inv_n, row);
             hand_off();
           }

@@ -116,18 +116,24 @@ BOUNCE_HD inline vec3 point_on_triangle(vec3 p0, vec3 p1, vec3 p2, vec2 v) {
 
 // The one implementation behind both forms below: `meshes` is the scene's meshes (host Mesh or
 // MeshView; both index positions and triangles alike), the rest the area light's arrays.
+// The point at `pick` (pick_area_light_triangle's) on the area light's picked triangle.
 template <typename Meshes>
-BOUNCE_HD inline AreaLightPoint area_light_point_on(const Meshes& meshes,
+BOUNCE_HD inline AreaLightPoint area_light_point_at(const Meshes& meshes,
                                                     const TriangleRef* triangles,
-                                                    const vec3* normals, const float* cdf,
-                                                    uint32_t count, vec2 u) {
-  const AreaLightTriangle pick = pick_area_light_triangle(cdf, count, u);
+                                                    const vec3* normals, AreaLightTriangle pick) {
   const TriangleRef ref = triangles[pick.index];
   const auto& mesh = meshes[ref.mesh];
   const uvec3 tri = mesh.triangles[ref.triangle];
   return {point_on_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
                             pick.v),
           normals[pick.index]};
+}
+template <typename Meshes>
+BOUNCE_HD inline AreaLightPoint area_light_point_on(const Meshes& meshes,
+                                                    const TriangleRef* triangles,
+                                                    const vec3* normals, const float* cdf,
+                                                    uint32_t count, vec2 u) {
+  return area_light_point_at(meshes, triangles, normals, pick_area_light_triangle(cdf, count, u));
 }
 BOUNCE_HD inline AreaLightPoint sample_area_light_point(const SceneView& scene,
                                                         const AreaLightView& light, vec2 u) {
