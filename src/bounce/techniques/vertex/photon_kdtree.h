@@ -28,6 +28,7 @@ struct MapPhotons {
   std::vector<vec3> normal;  // the surface's normal on the side the photon arrived from
 
   size_t size() const { return position.size(); }
+  bool operator==(const MapPhotons&) const = default;
   void clear() {
     position.clear();
     flux.clear();

@@ -60,6 +60,8 @@ VertexPhotonMapping::VertexPhotonMapping() {
   params_.add_bool("exact_photon_map", &s.exact_photon_map,
                    "brute-force k nearest (the seed's Exact_photon_map)");
   params_.add_int("seed", &s.seed, 0, 1 << 30, "photon sample seed");
+  params_.add_bool("keep_unchanged", &s.keep_unchanged,
+                   "keep the kd-tree and estimates while the photons equal those they replace");
 }
 
 std::vector<TechniqueOption> VertexPhotonMapping::options() const {
@@ -100,11 +102,16 @@ uint64_t VertexPhotonMapping::memory_estimate(const Scene& scene) const {
 void VertexPhotonMapping::prepare(const PrepareContext& c) {
   const VertexSettings& s = settings_;
   diagonal_ = std::max(c.scene.bounds.diagonal(), 1e-6f);
+  // The tree can stay only if nothing it was built with changed but this frame's photons, which
+  // are compared below; estimates also need their keys where they were.
+  bool may_keep = s.keep_unchanged && started_ && !c.change.everything && !c.change.parameters &&
+                  c.change.moved_meshes.empty();
   {
     ScopedStage stage(c.times, "prepare/refine");
     if (!started_ || c.change.everything || refined_with_ != s.mesh_refinement) {
       refined_.build(c.scene, uint32_t(s.mesh_refinement));
       refined_with_ = s.mesh_refinement;
+      may_keep = false;
     } else if (!c.change.moved_meshes.empty()) {
       refined_.update(c.scene, c.change.moved_meshes);
     }
@@ -139,8 +146,14 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     ps.seed = uint32_t(s.seed);
     ps.every_triangle = !s.bsp_tree;
     ps.variant = rest_pass_;
+    // With the ring full, this frame's slot replaces photons the tree holds.
+    may_keep = may_keep && ring_.filled() == ring_.frames();
+    if (may_keep) replaced_ = ring_.slot(frame_ % ring_.frames());
     MapPhotons& slot = ring_.begin_frame(frame_);
     const VertexPhotonStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot);
+    // Frame-coherent photons retrace the same paths while nothing moved: then the ring holds
+    // what it held, and the tree built on it stands.
+    kept_tree_ = may_keep && slot == replaced_;
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
@@ -148,10 +161,13 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   ++frame_;
   {
     ScopedStage stage(c.times, "prepare/kd-tree");
-    ring_.gather(map_);
-    tree_.build(map_, uint32_t(s.stop_recursion_size));
+    if (!kept_tree_) {
+      ring_.gather(map_);
+      tree_.build(map_, uint32_t(s.stop_recursion_size));
+    }
   }
 
+  const EstimateSettings last = estimate_;
   EstimateSettings& e = estimate_;
   e.k = s.max_search_count;
   e.max_radius =
@@ -171,6 +187,8 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   e.flux_scale = ring_.filled() > 0 ? 1.0f / float(ring_.filled()) : 0.0f;
   e.final_gather_rays = s.final_gathering ? s.final_gathering_samples : 0;
   e.final_gather_seed = hash_u32(uint32_t(s.seed) ^ rest_pass_);
+  keep_estimates_ = kept_tree_ && e == last;
+  if (!keep_estimates_) known_.clear();
 }
 
 void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
@@ -201,13 +219,16 @@ void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
   }
   {
     ScopedStage stage(c.times, "indirect/estimate");
+    // Estimates made since the tree was built stand while it does (keep_unchanged).
+    if (known_.size() != slots) known_.assign(slots, 0);
     todo_.clear();
     for (size_t k = 0; k < slots; ++k)
-      if (needed_[k]) todo_.push_back(uint32_t(k));
+      if (needed_[k] && !known_[k]) todo_.push_back(uint32_t(k));
     const VertexEstimateView ev{mesh,      tree_.view(),       c.scene_view, c.tracer.view(),
                                 estimate_, irradiance_.data(), per_key};
     parallel_for(
         todo_.size(), [&](size_t j) { estimate_slot(ev, todo_[j]); }, 16);
+    for (const uint32_t k : todo_) known_[k] = 1;
     estimates_ = todo_.size();
   }
   ScopedStage stage(c.times, "indirect/interpolate");

@@ -44,6 +44,9 @@ struct VertexSettings {
   bool roulette = true;                // beyond the split levels, paths go on by Russian roulette
   bool exact_photon_map = false;       // brute-force k nearest (the seed's Exact_photon_map)
   int seed = 0;
+  // While a frame's photons equal the ones they replace (nothing that lights or holds them
+  // moved), the kd-tree and the estimates already made stay: the same answers, not recomputed.
+  bool keep_unchanged = true;
 };
 
 class VertexPhotonMapping final : public Technique {
@@ -69,6 +72,8 @@ class VertexPhotonMapping final : public Technique {
   const EstimateSettings& estimate_settings() const { return estimate_; }
   // Irradiance estimates made in the last frame.
   uint64_t estimates() const { return estimates_; }
+  // Whether the last frame kept the kd-tree (its photons equalled those they replaced).
+  bool kept_tree() const { return kept_tree_; }
 
  private:
   VertexSettings settings_;
@@ -85,6 +90,11 @@ class VertexPhotonMapping final : public Technique {
   uint32_t rest_pass_ = 0;  // frames at rest since the last change
   uint64_t estimates_ = 0;
   float diagonal_ = 1.0f;
+  // keep_unchanged: the photons this frame's slot held before it was refilled; whether the
+  // tree, and the estimates made since it was built, still hold.
+  MapPhotons replaced_;
+  bool kept_tree_ = false;
+  bool keep_estimates_ = false;
 
   // Per pixel: its refined triangle, weights and side; per key (or corner) and side: whether a
   // pixel needs it, and its irradiance.
@@ -92,6 +102,7 @@ class VertexPhotonMapping final : public Technique {
   std::vector<vec3> pixel_weights_;
   std::vector<uint8_t> pixel_side_;
   std::vector<uint8_t> needed_;
+  std::vector<uint8_t> known_;  // estimated since the tree was built (keep_estimates_)
   std::vector<uint32_t> todo_;
   std::vector<vec3> irradiance_;
 };

@@ -27,6 +27,8 @@ struct EstimateSettings {
   float flux_scale = 1.0f;     // 1 / (ring frames filled): the map holds that many frames
   int final_gather_rays = 0;   // > 0: final gathering with this many rays
   uint32_t final_gather_seed = 0;
+
+  bool operator==(const EstimateSettings&) const = default;
 };
 static_assert(std::is_trivially_copyable_v<EstimateSettings>);
 
