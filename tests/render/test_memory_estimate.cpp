@@ -54,7 +54,10 @@ TEST(MemoryEstimate, VertexCountsTheSplitTreeAndTheRefinement) {
   s.recursion_depth = 2;
   s.mesh_refinement = 0;
   // Per path 1 + 4 + 16 photons, and the 16 of the last level go on with 1 deposit each: 37.
-  // 10 x 2 x 37 photons x 36 bytes x 3 copies = 79,920 bytes.
+  // 10 x 2 x 37 photons x 36 bytes x 3 copies = 79,920 bytes, and keep_unchanged's copy of one
+  // slot: 10 x 37 x 36 = 13,320.
+  EXPECT_EQ(vertex.memory_estimate(scene), 79920u + 13320u);
+  s.keep_unchanged = false;
   EXPECT_EQ(vertex.memory_estimate(scene), 79920u);
   s.mesh_refinement = 1000;
   EXPECT_EQ(vertex.memory_estimate(scene), 79920u + 350000u);

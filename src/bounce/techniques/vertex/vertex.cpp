@@ -87,15 +87,16 @@ uint64_t VertexPhotonMapping::memory_estimate(const Scene& scene) const {
     level *= n;
   }
   const double per_path = tree + (level / n) * expected_photon_deposits(scene, -1);
-  const double photons = double(s.photons_from_light) * double(s.accumulation_frames) * per_path;
+  const double slot = double(s.photons_from_light) * per_path;
   // Each photon is three vec3 (MapPhotons), held in the ring, in the map gathered from it and in
-  // the kd-tree's copy in tree order.
-  constexpr double kPhotonCopies = 3.0;
+  // the kd-tree's copy in tree order; keep_unchanged holds one more slot (what a refill replaced).
+  const double photon_copies =
+      slot * double(s.accumulation_frames) * 3.0 + (s.keep_unchanged ? slot : 0.0);
   // Measured: peak resident memory grows by 342 bytes per triangle the refinement adds
   // (`/usr/bin/time -f %M bounce bench cornell -t vertex -W 64 -H 64 --refine N -n 1`, N = 0
   // and 2,000,000: 20 MB and 704 MB).
   constexpr double kRefinedTriangleBytes = 350.0;
-  return saturating_bytes(photons * 3.0 * sizeof(vec3) * kPhotonCopies +
+  return saturating_bytes(photon_copies * 3.0 * sizeof(vec3) +
                           double(s.mesh_refinement) * kRefinedTriangleBytes);
 }
 
