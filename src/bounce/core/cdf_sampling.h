@@ -42,13 +42,18 @@ BOUNCE_HD inline uint32_t cdf_entry(const float* cdf, uint32_t base, uint32_t co
   const uint32_t entry = base + (cdf[base] <= u ? 1u : 0u);
   return entry < count ? entry : count - 1;
 }
-BOUNCE_HD inline CdfSample sample_cdf(const float* cdf, size_t count, float u) {
-  uint32_t base = 0;
-  for (uint32_t len = uint32_t(count); len > 1;) {
+// Calls step(half) for each of the search's steps over a table of `count` entries.
+template <typename Step>
+BOUNCE_HD inline void for_cdf_halves(uint32_t count, Step&& step) {
+  for (uint32_t len = count; len > 1;) {
     const uint32_t half = len / 2;
-    base = cdf_halve(cdf, base, half, u);
+    step(half);
     len -= half;
   }
+}
+BOUNCE_HD inline CdfSample sample_cdf(const float* cdf, size_t count, float u) {
+  uint32_t base = 0;
+  for_cdf_halves(uint32_t(count), [&](uint32_t half) { base = cdf_halve(cdf, base, half, u); });
   const uint32_t entry = cdf_entry(cdf, base, uint32_t(count), u);
   return {entry, cdf_stretch(cdf, entry, u)};
 }

@@ -68,11 +68,9 @@ void pick_area_light_row(const SceneView& scene, const AreaLightView& light, int
     row.u[j] = pattern_sample(k, n, row.offset[j]);
     row.base[j] = 0;
   }
-  for (uint32_t len = count; len > 1;) {
-    const uint32_t half = len / 2;
+  for_cdf_halves(count, [&](uint32_t half) {
     for (int j = 0; j < width; ++j) row.base[j] = cdf_halve(cdf, row.base[j], half, row.u[j].x);
-    len -= half;
-  }
+  });
   for (int j = 0; j < width; ++j) {
     const float ux = row.u[j].x;
     const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);

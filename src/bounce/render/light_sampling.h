@@ -114,8 +114,6 @@ BOUNCE_HD inline vec3 point_on_triangle(vec3 p0, vec3 p1, vec3 p2, vec2 v) {
   return (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
 }
 
-// The one implementation behind both forms below: `meshes` is the scene's meshes (host Mesh or
-// MeshView; both index positions and triangles alike), the rest the area light's arrays.
 // The point at `pick` (pick_area_light_triangle's) on the area light's picked triangle.
 template <typename Meshes>
 BOUNCE_HD inline AreaLightPoint area_light_point_at(const Meshes& meshes,
@@ -128,6 +126,8 @@ BOUNCE_HD inline AreaLightPoint area_light_point_at(const Meshes& meshes,
                             pick.v),
           normals[pick.index]};
 }
+// The one implementation behind both forms below: `meshes` is the scene's meshes (host Mesh or
+// MeshView; both index positions and triangles alike), the rest the area light's arrays.
 template <typename Meshes>
 BOUNCE_HD inline AreaLightPoint area_light_point_on(const Meshes& meshes,
                                                     const TriangleRef* triangles,

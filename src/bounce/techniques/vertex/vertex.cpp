@@ -188,8 +188,8 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   e.flux_scale = ring_.filled() > 0 ? 1.0f / float(ring_.filled()) : 0.0f;
   e.final_gather_rays = s.final_gathering ? s.final_gathering_samples : 0;
   e.final_gather_seed = hash_u32(uint32_t(s.seed) ^ rest_pass_);
-  keep_estimates_ = kept_tree_ && e == last;
-  if (!keep_estimates_) known_.clear();
+  // Estimates made on the kept tree with the same settings stand (indirect reads known_).
+  if (!(kept_tree_ && e == last)) known_.clear();
 }
 
 void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {

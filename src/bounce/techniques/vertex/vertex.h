@@ -91,10 +91,9 @@ class VertexPhotonMapping final : public Technique {
   uint64_t estimates_ = 0;
   float diagonal_ = 1.0f;
   // keep_unchanged: the photons this frame's slot held before it was refilled; whether the
-  // tree, and the estimates made since it was built, still hold.
+  // tree still holds.
   MapPhotons replaced_;
   bool kept_tree_ = false;
-  bool keep_estimates_ = false;
 
   // Per pixel: its refined triangle, weights and side; per key (or corner) and side: whether a
   // pixel needs it, and its irradiance.
@@ -102,7 +101,7 @@ class VertexPhotonMapping final : public Technique {
   std::vector<vec3> pixel_weights_;
   std::vector<uint8_t> pixel_side_;
   std::vector<uint8_t> needed_;
-  std::vector<uint8_t> known_;  // estimated since the tree was built (keep_estimates_)
+  std::vector<uint8_t> known_;  // estimated since the tree was built (keep_unchanged)
   std::vector<uint32_t> todo_;
   std::vector<vec3> irradiance_;
 };
