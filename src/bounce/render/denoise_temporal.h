@@ -67,9 +67,9 @@ struct Reprojected {
 // in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
 // where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
 // depth_tolerance relative, normals within normal_tolerance). Branch-free: taps outside the
-// image read its nearest pixel with weight 0, and a pixel without a surface keeps nothing. (GCC 12
-// still leaves the CPU's row loop scalar: it makes the taps' loads masked gathers, which it
-// only emulates for this target and cannot mask.)
+// image read its nearest pixel with weight 0, and a pixel without a surface keeps nothing. The
+// taps' index is a 32-bit int (images hold far fewer than 2^31 pixels): with a 64-bit one GCC 12
+// leaves the CPU's row loop scalar, with this one it gathers eight pixels' taps at once.
 BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
                                                          size_t i) {
   Reprojected r;
@@ -91,8 +91,8 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, 
     const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
     // The nearest texel inside: every tap reads the image, and one outside weighs nothing. (With
     // a select of texel 0 instead, compute-sanitizer caught the GPU reading far outside it.)
-    const size_t q = size_t(glm::clamp(qy, 0, p.prev_height - 1)) * size_t(p.prev_width) +
-                     size_t(glm::clamp(qx, 0, p.prev_width - 1));
+    const int q =
+        glm::clamp(qy, 0, p.prev_height - 1) * p.prev_width + glm::clamp(qx, 0, p.prev_width - 1);
     const bool same_object = p.prev_surface.object[q] == object;
     const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= dz_max;
     const bool near_normal = glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance;
