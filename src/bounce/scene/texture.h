@@ -35,15 +35,24 @@ struct TextureView {
   int width = 0;
   int height = 0;
 
+  // A coordinate's position within its repeat, in [0, 1]: 1 only where rounding puts a tiny
+  // negative coordinate there. Not finite (NaN, or infinite: inf - inf): 0.
+  BOUNCE_HD static float repeat(float u) {
+    const float f = u - std::floor(u);
+    return (f >= 0.0f && f <= 1.0f) ? f : 0.0f;
+  }
+
   // Bilinear, repeat wrapping; (0, 0) is the top-left texel's corner, as in glTF.
   BOUNCE_HD vec3 sample(vec2 uv) const {
-    const float x = (uv.x - std::floor(uv.x)) * float(width) - 0.5f;
-    const float y = (uv.y - std::floor(uv.y)) * float(height) - 0.5f;
+    const float x = repeat(uv.x) * float(width) - 0.5f;
+    const float y = repeat(uv.y) * float(height) - 0.5f;
     const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     const float fx = x - float(x0), fy = y - float(y0);
+    // Texel coordinates lie in [-1, size]: one step wraps them (integer division, twice per
+    // coordinate, was most of a sample's cost on a textured level's G-buffer).
     const auto texel = [&](int tx, int ty) {
-      tx = ((tx % width) + width) % width;
-      ty = ((ty % height) + height) % height;
+      tx = tx < 0 ? tx + width : (tx >= width ? tx - width : tx);
+      ty = ty < 0 ? ty + height : (ty >= height ? ty - height : ty);
       return texels[size_t(ty) * size_t(width) + size_t(tx)];
     };
     return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
