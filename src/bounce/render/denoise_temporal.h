@@ -130,6 +130,14 @@ struct ColorBox {
 struct ColorBoxes {
   ColorBox direct, indirect;
 };
+// The box of n pixels whose light sums to s1 and its squares to s2 (no pixels: a zero box).
+BOUNCE_HD BOUNCE_LANE_INLINE ColorBox color_box(float n, vec3 s1, vec3 s2) {
+  ColorBox b;
+  const float inv = 1.0f / glm::max(n, 1.0f);
+  b.mean = s1 * inv;
+  b.sigma = glm::sqrt(glm::max(s2 * inv - b.mean * b.mean, vec3(0.0f)));
+  return b;
+}
 BOUNCE_HD inline ColorBoxes neighbourhood(const TemporalPass& p, int x, int y) {
   vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
   float n = 0.0f;
@@ -146,13 +154,7 @@ BOUNCE_HD inline ColorBoxes neighbourhood(const TemporalPass& p, int x, int y) {
       n += 1.0f;
     }
   }
-  auto box = [n](vec3 s1, vec3 s2) {
-    ColorBox b;
-    b.mean = s1 / n;
-    b.sigma = glm::sqrt(glm::max(s2 / n - b.mean * b.mean, vec3(0.0f)));
-    return b;
-  };
-  return {box(d1, d2), box(i1, i2)};
+  return {color_box(n, d1, d2), color_box(n, i1, i2)};
 }
 
 // Clamps a history colour (rgb, mean squared luminance) into mean +- gamma sigma, keeping the
@@ -177,6 +179,64 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
     if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
   }
   return r;
+}
+
+// This frame's demodulated light as planes, for the CPU's clipped rows (their loops then
+// vectorise): direct rgb, indirect rgb, and each pixel's weight in a neighbourhood (1 with a
+// surface, 0 without).
+inline constexpr int kDemodulatedPlanes = 7;
+template <bool kIndirect>
+BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_t i,
+                                                    float* const* v) {
+  vec3 d, ind;
+  demodulated(p, i, d, ind);
+  // (Zeros where no surface is: a masked tap adds exactly nothing, whatever light is there.)
+  const bool hit = p.g.hit(i);
+  d = pick(hit, d, vec3(0.0f));
+  ind = pick(hit, ind, vec3(0.0f));
+  v[0][i] = d.x;
+  v[1][i] = d.y;
+  v[2][i] = d.z;
+  if constexpr (kIndirect) {
+    v[3][i] = ind.x;
+    v[4][i] = ind.y;
+    v[5][i] = ind.z;
+  }
+  v[6][i] = hit ? 1.0f : 0.0f;
+}
+
+// neighbourhood() at pixel x of the row whose neighbour rows (y - 1, y, y + 1) start at `rows`,
+// from store_demodulated's planes: a row outside the image has `row_mask` 0 (and reads row y);
+// kChecked tests the columns (the row's ends). The same sums in the same order, branch-free.
+template <bool kIndirect, bool kChecked>
+BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const* v,
+                                                             const size_t (&rows)[3],
+                                                             const float (&row_mask)[3], int x,
+                                                             int width) {
+  vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
+  float n = 0.0f;
+  unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
+    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
+    float mask = row_mask[dy + 1];
+    int qx = x + dx;
+    if constexpr (kChecked) {
+      const bool inside = (qx >= 0) & (qx < width);
+      mask = inside ? mask : 0.0f;
+      qx = inside ? qx : x;
+    }
+    const size_t q = rows[dy + 1] + size_t(qx);
+    const float w = mask * v[6][q];
+    const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
+    d1 += d;
+    d2 += d * d;
+    if constexpr (kIndirect) {
+      const vec3 ind = w * vec3(v[3][q], v[4][q], v[5][q]);
+      i1 += ind;
+      i2 += ind * ind;
+    }
+    n += w;
+  });
+  return {color_box(n, d1, d2), color_box(n, i1, i2)};
 }
 
 // A row of temporal_history's results as planes, where the CPU's first half leaves them for the

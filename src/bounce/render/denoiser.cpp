@@ -47,7 +47,9 @@ template <int kCount>
 struct Planes {
   std::array<std::vector<float>, kCount> planes;
   std::array<size_t, kCount> offset{};  // where each plane's first pixel is
+  size_t pixels = 0;
   void resize(size_t n) {
+    pixels = n;
     for (int k = 0; k < kCount; ++k) {
       offset[size_t(k)] = next_plane_offset();
       planes[size_t(k)].assign(n + offset[size_t(k)] + kPlanePadding, 0.0f);
@@ -109,11 +111,61 @@ BOUNCE_LANE_INLINE void row_loop(int width, int border, const Checked& checked,
   for (int x = x1; x < width; ++x) checked(x);
 }
 
-// The temporal pass row by row: the reprojected history into row planes (scalar: its taps go
-// where the motion says; branch-free but where the world changed and the history is clipped),
-// then the blend, in a loop the compiler vectorises. Marks the rows with a short history.
+// This frame's demodulated light into `v`'s planes (denoise::store_demodulated), for
+// clip_row's neighbourhoods.
+template <bool kIndirect>
+void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
+  for_rows(pass.height, [&](int y) {
+    const denoise::TemporalPass p = pass;
+    const size_t first = size_t(y) * size_t(p.width);
+    BOUNCE_IVDEP
+    for (size_t i = first; i < first + size_t(p.width); ++i)
+      denoise::store_demodulated<kIndirect>(p, i, v);
+  });
+}
+
+// Clips the row's reprojected history to this frame's neighbourhoods (the world changed), from
+// demodulate_pass's planes. Every pixel is clipped: a history not kept is not read.
+template <bool kIndirect>
+void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, int y,
+              const denoise::ReprojectedRow& row) {
+  size_t rows[3];
+  float row_mask[3];
+  for (int k = 0; k < 3; ++k) {
+    const int qy = y + k - 1;
+    const bool inside = qy >= 0 && qy < p.height;
+    rows[k] = size_t(inside ? qy : y) * size_t(p.width);
+    row_mask[k] = inside ? 1.0f : 0.0f;
+  }
+  float* v[8];
+  for (int c = 0; c < 8; ++c) v[c] = row.v[c];
+  const float gamma = p.s.clip_gamma;
+  auto clip_light = [&](float* const* c, int x, const denoise::ColorBox& box)
+                        BOUNCE_LANE_LAMBDA_INLINE {
+                          vec4 h(c[0][x], c[1][x], c[2][x], c[3][x]);
+                          denoise::clip_history(box, gamma, h);
+                          c[0][x] = h.x;
+                          c[1][x] = h.y;
+                          c[2][x] = h.z;
+                          c[3][x] = h.w;
+                        };
+  auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
+    const denoise::ColorBoxes boxes =
+        denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
+    clip_light(v, x, boxes.direct);
+    if constexpr (kIndirect) clip_light(v + 4, x, boxes.indirect);
+  };
+  row_loop(
+      p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
+      [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+}
+
+// The temporal pass row by row: the reprojected history into row planes (clipped where the world
+// changed, from `demodulated`'s planes), then the blend, in loops the compiler vectorises. Marks
+// the rows with a short history.
 template <bool kIndirect, bool kRest>
-void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_short) {
+void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodulated,
+                   std::vector<uint8_t>& row_short) {
   for_rows(pass.height, [&](int y) {
     const denoise::TemporalPass p = pass;
     const size_t first = size_t(y) * size_t(p.width);
@@ -141,14 +193,10 @@ void temporal_pass(const denoise::TemporalPass& pass, std::vector<uint8_t>& row_
       row_planes.resize(10 * size_t(p.width));
       denoise::ReprojectedRow row;
       for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
-      if (p.s.clip) {
-        // (The world changed: each kept history is clipped to its neighbourhood, scalar.)
-        for (int x = 0; x < p.width; ++x) row.store(x, denoise::temporal_history(p, x, y));
-      } else {
-        BOUNCE_IVDEP
-        for (int x = 0; x < p.width; ++x)
-          row.store(x, denoise::reproject_moved(p, x, y, first + size_t(x)));
-      }
+      BOUNCE_IVDEP
+      for (int x = 0; x < p.width; ++x)
+        row.store(x, denoise::reproject_moved(p, x, y, first + size_t(x)));
+      if (p.s.clip) clip_row<kIndirect>(p, demodulated, y, row);
       const float* v[10];
       for (int c = 0; c < 10; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
@@ -444,6 +492,8 @@ struct Denoiser::Buffers {
   Planes<8> history, prev_history;  // denoise::HistoryPlanes
   std::vector<float> prev_length;   // last run's history_length_
   Planes<6> rest;                   // RestPlanes: factor rgb, emission rgb
+  // This frame's demodulated light where the history is clipped (denoise::store_demodulated).
+  Planes<denoise::kDemodulatedPlanes> demodulated;
   Planes<5> box;                    // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
@@ -644,12 +694,20 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     // Rest averages start at a reset (the first frame of a still) and continue at rest.
     const bool update_rest = rest || state == HistoryState::kReset;
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
+    float* demodulated[denoise::kDemodulatedPlanes] = {};
+    if (temporal_settings.history && temporal_settings.clip) {
+      // (Sized on the first frame that needs them: a still or camera-only scene never does.)
+      if (b.demodulated.pixels != n) b.demodulated.resize(n);
+      for (int k = 0; k < denoise::kDemodulatedPlanes; ++k) demodulated[k] = b.demodulated[k];
+      has_indirect ? demodulate_pass<true>(temporal, demodulated)
+                   : demodulate_pass<false>(temporal, demodulated);
+    }
     if (has_indirect)
-      update_rest ? temporal_pass<true, true>(temporal, b.row_short)
-                  : temporal_pass<true, false>(temporal, b.row_short);
+      update_rest ? temporal_pass<true, true>(temporal, demodulated, b.row_short)
+                  : temporal_pass<true, false>(temporal, demodulated, b.row_short);
     else
-      update_rest ? temporal_pass<false, true>(temporal, b.row_short)
-                  : temporal_pass<false, false>(temporal, b.row_short);
+      update_rest ? temporal_pass<false, true>(temporal, demodulated, b.row_short)
+                  : temporal_pass<false, false>(temporal, demodulated, b.row_short);
   }
   b.rest_valid = rest || state == HistoryState::kReset;
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
