@@ -70,6 +70,11 @@ TEST(CliSequence, WritesExactlyTheFramesItNames) {
     EXPECT_GT(f["ms"].get<double>(), 0.0);
     EXPECT_EQ(f["file"], (dir / "all" / fmt::format("f_{:04}.png", k)).string());
   }
+  // The means: of every frame, and of those after the first (which also sizes the buffers).
+  const double ms[3] = {j["frames"][0]["ms"], j["frames"][1]["ms"], j["frames"][2]["ms"]};
+  EXPECT_NEAR(j["mean_frame_ms"].get<double>(), (ms[0] + ms[1] + ms[2]) / 3.0, 1e-9);
+  EXPECT_NEAR(j["mean_frame_ms_after_first"].get<double>(), (ms[1] + ms[2]) / 2.0, 1e-9);
+  EXPECT_TRUE(contains(r.output, "mean frame after the first")) << r.output;
 
   // --every 2 keeps frames 0 and 2; frame 1 is still rendered (and timed) for the history.
   r = run("sequence cornell -W 32 -H 32 --to 0.2 --fps 10 --every 2 -o " +
