@@ -124,6 +124,17 @@ void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
   });
 }
 
+// Clips the history texel at entry x of four row planes (rgb, mean squared luminance) to `box`.
+BOUNCE_LANE_INLINE void clip_entry(float* const* c, int x, const denoise::ColorBox& box,
+                                   float gamma) {
+  vec4 h(c[0][x], c[1][x], c[2][x], c[3][x]);
+  denoise::clip_history(box, gamma, h);
+  c[0][x] = h.x;
+  c[1][x] = h.y;
+  c[2][x] = h.z;
+  c[3][x] = h.w;
+}
+
 // Clips the row's reprojected history to this frame's neighbourhoods (the world changed), from
 // demodulate_pass's planes. Every pixel is clipped: a history not kept is not read.
 template <bool kIndirect>
@@ -140,20 +151,11 @@ void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, i
   float* v[8];
   for (int c = 0; c < 8; ++c) v[c] = row.v[c];
   const float gamma = p.s.clip_gamma;
-  auto clip_light = [&](float* const* c, int x, const denoise::ColorBox& box)
-                        BOUNCE_LANE_LAMBDA_INLINE {
-                          vec4 h(c[0][x], c[1][x], c[2][x], c[3][x]);
-                          denoise::clip_history(box, gamma, h);
-                          c[0][x] = h.x;
-                          c[1][x] = h.y;
-                          c[2][x] = h.z;
-                          c[3][x] = h.w;
-                        };
   auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
     const denoise::ColorBoxes boxes =
         denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
-    clip_light(v, x, boxes.direct);
-    if constexpr (kIndirect) clip_light(v + 4, x, boxes.indirect);
+    clip_entry(v, x, boxes.direct, gamma);
+    if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma);
   };
   row_loop(
       p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
