@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/motion_kernel.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
@@ -77,6 +79,45 @@ TEST(Motion, CameraMoveReprojectsOntoTheSameSurfacePoint) {
   EXPECT_GT(moving, kSize * kSize / 2);  // the move is visible
   EXPECT_GT(checked, kSize * kSize / 2);
   EXPECT_GE(agree, checked * 98 / 100);
+}
+
+// When only the camera moved, compute_motion takes a row loop (camera_motion_pixel): it gives
+// motion_pixel's answer for every pixel, on surfaces, on the sky around the open box, and for
+// points behind the previous camera.
+TEST(Motion, CameraOnlyRowsEqualThePerPixelKernel) {
+  const Scene scene = make_cornell();
+  const auto tracer = make_embree_tracer(scene);
+  const SceneData data = SceneData::from(scene);
+  const Camera start = scene.camera;
+  const vec3 forward = glm::normalize(start.look_at - start.position);
+  Camera back = start;  // backed out of the box: the sky shows around it
+  back.position -= 1.5f * scene.bounds.diagonal() * forward;
+  back.look_at = back.position + forward + vec3(0.3f, 0.1f, 0.0f);
+  Camera turned = start;  // looking back the way it came: everything is behind it
+  turned.look_at = start.position - forward;
+  const std::pair<Camera, Camera> moves[] = {
+      {moved_camera(start), start}, {back, start}, {start, back}, {start, turned}};
+  int sky = 0, behind = 0;
+  for (const auto& [now, before] : moves) {
+    const CameraRays after = CameraRays::from(now, kSize, kSize);
+    const CameraRays previous = CameraRays::from(before, kSize, kSize);
+    GBuffer g = gbuffer_of(data.view(), *tracer, after);
+    compute_motion(data.view(), after, previous, g);
+    const ConstGBufferView view = std::as_const(g).view();
+    for (size_t i = 0; i < g.size(); ++i) {
+      const vec2 want = motion_pixel(data.view(), after, previous, view, i);
+      sky += !g.hit(i);
+      behind += want.x == kOffscreenMotion;
+      if (want.x == kOffscreenMotion) {
+        ASSERT_EQ(g.motion[i], want) << i;
+        continue;
+      }
+      ASSERT_NEAR(g.motion[i].x, want.x, 1e-3f * (1.0f + std::fabs(want.x))) << i;
+      ASSERT_NEAR(g.motion[i].y, want.y, 1e-3f * (1.0f + std::fabs(want.y))) << i;
+    }
+  }
+  EXPECT_GT(sky, kSize * kSize / 4);  // every case above was met, and often
+  EXPECT_GT(behind, kSize * kSize / 2);
 }
 
 // A mesh moved between two frames: its pixels move by the projection of the offset, and the

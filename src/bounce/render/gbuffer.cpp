@@ -53,6 +53,22 @@ uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const Camer
   return uint64_t(g.width) * g.height;
 }
 
+namespace {
+
+// Row y of the motion when only the camera moved, in a loop the compiler vectorises (with copies
+// of its inputs, which its stores then cannot change).
+void camera_motion_row(const CameraRays& current, const CameraRays& previous,
+                       const ConstGBufferView& g, vec2* motion, int y) {
+  const CameraRays now = current, before = previous;
+  const ConstGBufferView gv = g;
+  const size_t first = size_t(y) * size_t(gv.width);
+  BOUNCE_IVDEP
+  for (int x = 0; x < gv.width; ++x)
+    motion[first + size_t(x)] = camera_motion_pixel(now, before, gv, first + size_t(x), x, y);
+}
+
+}  // namespace
+
 void compute_motion(const SceneView& scene, const CameraRays& camera, const CameraRays& previous,
                     GBuffer& g) {
   // A still camera over meshes without a previous pose moves no pixel: zero, as motion_pixel
@@ -67,6 +83,17 @@ void compute_motion(const SceneView& scene, const CameraRays& camera, const Came
   }
   const GBufferView view = g.view();
   const ConstGBufferView read = view;
+  bool meshes_moved = false;
+  for (uint32_t m = 0; m < scene.mesh_count; ++m)
+    meshes_moved |= scene.meshes[m].previous_positions != nullptr;
+  if (!meshes_moved) {
+    // Only the camera moved (the walk, the viewer's fly camera): row loops the compiler
+    // vectorises.
+    parallel_for(
+        size_t(g.height),
+        [&](size_t row) { camera_motion_row(camera, previous, read, view.motion, int(row)); }, 2);
+    return;
+  }
   parallel_for(
       g.size(), [&](size_t i) { view.motion[i] = motion_pixel(scene, camera, previous, read, i); },
       4096);

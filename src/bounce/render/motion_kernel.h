@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/gbuffer_view.h"
 #include "bounce/scene/camera.h"
@@ -51,6 +52,27 @@ BOUNCE_HD inline vec2 motion_pixel(const SceneView& scene, const CameraRays& cur
   // Exactly zero for a still point under a still camera (projection would round).
   if (still_camera && glm::all(glm::equal(before, g.position[i]))) return vec2(0.0f);
   return current.project(g.position[i]) - previous.project(before);
+}
+
+// motion_pixel at pixel (x, y) = i when the camera moved and no mesh did, branch-free so that a
+// row loop vectorises: the same arithmetic, each pixel's case chosen by selects.
+BOUNCE_HD BOUNCE_LANE_INLINE vec2 camera_motion_pixel(const CameraRays& current,
+                                                      const CameraRays& previous,
+                                                      const ConstGBufferView& g, size_t i, int x,
+                                                      int y) {
+  const bool hit = g.hit(i);
+  const float px = float(x) + 0.5f, py = float(y) + 0.5f;
+  const vec3 d = current.direction(px, py);
+  const vec3 position = g.position[i];
+  // A surface point moves as a point; a pixel without one as its direction (the sky).
+  const vec3 before = pick(hit, position, previous.origin + d);
+  const float ahead = pick(hit, glm::dot(position - previous.origin, previous.forward),
+                           glm::dot(d, previous.forward));
+  const vec2 now = current.project(position);
+  const vec2 then = previous.project(before);
+  const bool seen = ahead > 0.0f;
+  return {pick(seen, pick(hit, now.x, px) - then.x, kOffscreenMotion),
+          pick(seen, pick(hit, now.y, py) - then.y, kOffscreenMotion)};
 }
 
 }  // namespace bounce
