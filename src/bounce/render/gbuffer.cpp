@@ -71,21 +71,18 @@ void camera_motion_row(const CameraRays& current, const CameraRays& previous,
 
 void compute_motion(const SceneView& scene, const CameraRays& camera, const CameraRays& previous,
                     GBuffer& g) {
+  bool meshes_moved = false;
+  for (uint32_t m = 0; m < scene.mesh_count && !meshes_moved; ++m)
+    meshes_moved = scene.meshes[m].previous_positions != nullptr;
   // A still camera over meshes without a previous pose moves no pixel: zero, as motion_pixel
   // would give (primary rays hit only in front of the camera), without its pass over the
   // G-buffer's positions and ids.
-  bool moved = !(camera == previous);
-  for (uint32_t m = 0; m < scene.mesh_count && !moved; ++m)
-    moved = scene.meshes[m].previous_positions != nullptr;
-  if (!moved) {
+  if (!meshes_moved && camera == previous) {
     std::fill(g.motion.begin(), g.motion.end(), vec2(0.0f));
     return;
   }
   const GBufferView view = g.view();
   const ConstGBufferView read = view;
-  bool meshes_moved = false;
-  for (uint32_t m = 0; m < scene.mesh_count; ++m)
-    meshes_moved |= scene.meshes[m].previous_positions != nullptr;
   if (!meshes_moved) {
     // Only the camera moved (the walk, the viewer's fly camera): row loops the compiler
     // vectorises.
