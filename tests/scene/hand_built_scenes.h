@@ -1,6 +1,7 @@
-// Geometry built by hand in tests: quads and inward-facing boxes.
+// Geometry built by hand in tests: quads, inward-facing boxes and a bumpy ball.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "bounce/scene/mesh.h"
@@ -42,6 +43,28 @@ inline Mesh inward_box(const std::string& name, vec3 lo, vec3 hi, uint32_t mater
     add_quad(mesh, far_corner, e2, e1, material);
   }
   return mesh;
+}
+
+// An outward sphere of 2 r^2 triangles with bumps, so that no rotation maps it onto itself.
+inline Mesh bumpy_ball(int r, vec3 centre, float radius, uint32_t material = 0) {
+  Mesh m;
+  m.name = "ball";
+  for (int i = 0; i <= r; ++i)
+    for (int j = 0; j <= r; ++j) {
+      const float theta = kPi * float(i) / float(r), phi = 2.0f * kPi * float(j) / float(r);
+      const float bump = 1.0f + 0.2f * std::sin(3.0f * theta) * std::sin(2.0f * phi);
+      m.positions.push_back(centre + radius * bump *
+                                         vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                              std::sin(theta) * std::sin(phi)));
+    }
+  const auto at = [&](int i, int j) { return uint32_t(i * (r + 1) + j); };
+  for (int i = 0; i < r; ++i)
+    for (int j = 0; j < r; ++j) {
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+      m.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+    }
+  m.materials.assign(m.triangles.size(), material);
+  return m;
 }
 
 }  // namespace bounce::scene_test

@@ -1,7 +1,9 @@
 // Layered hit buffers (seed 001): the scene deep-rasterized along a set of directions, the
 // discrete visibility field the `lhb` technique gathers through. This is the owning container:
-// it builds the static slab once, rebuilds the moving meshes' slab each frame they move, and
-// hands out the plain LhbView that kernels (lhb_query.h) read.
+// it builds the static slab once; large moving meshes get buffers of their own (instances),
+// built once and re-posed each frame while their motion is affine; the small ones share a slab
+// rasterized again each frame they move. It hands out the plain LhbView that kernels
+// (lhb_query.h) read.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +16,7 @@
 #include "bounce/scene/bounds.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
+#include "bounce/techniques/lhb/affine_pose.h"
 #include "bounce/techniques/lhb/lhb_view.h"
 #include "bounce/trace/ray.h"
 
@@ -24,9 +27,18 @@ struct LhbSettings {
   int layers = 16;              // elements per texel, static slab (seed default)
   int dynamic_layers = 16;      // elements per texel, moving meshes' slab
   bool cull_back_faces = true;  // keep only faces a ray along the direction meets from the front
+  // Moving meshes of at least instance_min_triangles triangles, the largest max_instances of
+  // them, become instances: buffers over the mesh alone (texels as large as the scene's), built
+  // once and re-posed by the mesh's affine motion, rebuilt only when it deforms, mirrors or
+  // changes size by more than 2x. Instances together take at most one slab's texels. The rest
+  // share the moving slab, rasterized again each frame they move (the seed's way): cheap for
+  // few triangles, while every instance costs each query a lookup. 0: no instances.
+  int max_instances = 8;
+  int instance_min_triangles = 256;
 
   static constexpr int kMaxSize = 4096;
   static constexpr int kMaxLayers = 254;  // counts saturate at 255
+  static constexpr int kMaxInstances = 64;
 };
 
 struct LhbStats {
@@ -39,8 +51,13 @@ struct LhbStats {
   uint64_t dropped_elements = 0;
   uint64_t overflow_texels = 0;
   double static_build_ms = 0.0;   // the last static build
-  double dynamic_build_ms = 0.0;  // the last rebuild of the moving meshes
-  uint64_t static_builds = 0, dynamic_builds = 0;
+  double dynamic_build_ms = 0.0;  // the moving meshes' work of the last frame they moved
+  uint64_t static_builds = 0, dynamic_builds = 0;  // dynamic: rasterizations of the moving slab
+  int instances = 0;                               // moving meshes with buffers of their own
+  uint64_t instance_triangles = 0;
+  uint64_t instance_texels = 0;    // over all directions: size^2 x directions per instance
+  uint64_t instance_captures = 0;  // instance buffers rasterized (first pose, or re-captured)
+  uint64_t instance_reposes = 0;   // frames an instance moved by a transform alone
 };
 
 class LayeredHitBuffers {
@@ -52,10 +69,11 @@ class LayeredHitBuffers {
              std::span<const uint32_t> dynamic_meshes = {});
 
   // Follows a frame's change (seed 001 section 6): nothing for camera, light or material
-  // changes; moving meshes rebuild the moving slab; a mesh that moves for the first time joins
-  // the moving meshes (the static slab is rebuilt once without it); geometry leaving the
-  // buffers' region, or change.everything, rebuilds everything. Returns whether anything was
-  // rebuilt.
+  // changes; a moving instance takes its new transform (or is captured again when its motion is
+  // not affine); other moving meshes rebuild the moving slab; a mesh that moves for the first
+  // time joins the moving meshes (the static slab is rebuilt once without it); slab geometry
+  // leaving the buffers' region (instances may go anywhere), or change.everything, rebuilds
+  // everything. Returns whether anything was rebuilt or re-posed.
   bool update(const Scene& scene, const SceneChange& change);
 
   LhbView view() const;
@@ -67,6 +85,8 @@ class LayeredHitBuffers {
   // The larger side of one texel of buffer `direction`, in world units.
   float texel_size(int direction) const;
   const std::vector<uint32_t>& dynamic_meshes() const { return dynamic_meshes_; }
+  // The moving meshes that are instances, in the view's order.
+  std::vector<uint32_t> instance_meshes() const;
 
   // The closest hit of `ray` through buffer `direction` (ray.direction is taken to be that
   // direction; the caller snaps it): Embree's question answered by the buffers, with mesh and
@@ -85,21 +105,51 @@ class LayeredHitBuffers {
     size_t bytes() const { return texels * (size_t(layers) * sizeof(LhbElement) + 1); }
   };
 
+  // A moving mesh with buffers of its own, over its bounding box in the pose it was captured
+  // in; `pose` carries that pose to the mesh's current one.
+  struct Instance {
+    uint32_t mesh = 0;
+    std::vector<vec3> rest;  // the captured positions
+    AffineAnchors anchors;
+    Affine pose;
+    vec3 box_lo{0.0f}, box_hi{0.0f};  // in the captured pose, slightly widened
+    std::vector<LhbFrame> frames;
+    std::vector<uint16_t> direction_of;  // world direction -> the instance's nearest
+    int size = 0;
+    Slab slab;
+    LhbInstanceView view() const;
+  };
+
   void build_static(const Scene& scene);
   void build_dynamic(const Scene& scene);
-  void allocate(Slab& slab, int layers) const;
-  void rasterize(const Scene& scene, std::span<const uint32_t> meshes, Slab& slab) const;
-  bool inside_region(const Bounds& b) const;
+  void rebuild_all(const Scene& scene);
+  // Chooses which moving meshes are instances (capturing the new ones) and which share the slab.
+  void assign_moving(const Scene& scene);
+  bool capture(const Scene& scene, Instance& inst, size_t texel_budget);
+  // Follows the mesh to its current pose: by a transform when its motion is affine, else by
+  // capturing it again; false when neither works (it no longer fits the budget, or it collapsed
+  // to a line), and the caller moves it to the slab.
+  bool repose(const Scene& scene, Instance& inst);
+  void map_directions(Instance& inst) const;
+  void allocate(Slab& slab, int layers, size_t texels) const;
+  void rasterize(const Scene& scene, std::span<const uint32_t> meshes,
+                 std::span<const LhbFrame> frames, int size, Slab& slab) const;
+  bool slab_inside_region(const Scene& scene) const;
+  size_t instance_texels() const;
 
   LhbSettings settings_;
   std::vector<vec3> directions_;
   std::vector<LhbFrame> frames_;
   Bounds region_;  // the world box every buffer covers
-  std::vector<uint32_t> static_meshes_, dynamic_meshes_;
+  std::vector<uint32_t> static_meshes_, dynamic_meshes_;  // dynamic: every moving mesh
+  std::vector<uint32_t> slab_meshes_;                     // the moving ones in the slab
   std::vector<uint32_t> triangle_offsets_;  // the scene's, for global id -> (mesh, triangle)
   Slab static_, dynamic_;
+  std::vector<Instance> instances_;
+  std::vector<LhbInstanceView> instance_views_;  // what view() hands out, kept in step
   double static_build_ms_ = 0.0, dynamic_build_ms_ = 0.0;
   uint64_t static_builds_ = 0, dynamic_builds_ = 0;
+  uint64_t instance_captures_ = 0, instance_reposes_ = 0;
 };
 
 }  // namespace bounce

@@ -26,6 +26,10 @@ LhbTechnique::LhbTechnique() {
                   "number of buffer directions (solids: the nearest of base * 4^level)");
   params_.add_int("size", &s.size, 4, LhbSettings::kMaxSize, "N: texels per side of a buffer");
   params_.add_int("layers", &s.layers, 1, LhbSettings::kMaxLayers, "L: elements per texel");
+  params_.add_int("instances", &s.instances, 0, LhbSettings::kMaxInstances,
+                  "moving meshes (the largest, of 256 triangles or more) given buffers of their "
+                  "own that follow their motion by a transform instead of being rasterized "
+                  "again each frame; 0: all in the seed's moving slab");
   params_.add_int("paths", &s.paths, 1, 4096, "paths per pixel per frame");
   params_.add_int("bounces", &s.bounces, 0, 64, "indirect bounces");
   params_.add_float("cone_radius", &s.cone_radius, 0.0, 1000.0,
@@ -79,7 +83,7 @@ uint64_t LhbTechnique::memory_estimate(const Scene& scene) const {
 void LhbTechnique::prepare(const PrepareContext& context) {
   const SceneChange& c = context.change;
   const LhbTechniqueSettings& s = settings_;
-  const BuiltWith wanted{s.direction_kind, s.directions, s.size, s.layers};
+  const BuiltWith wanted{s.direction_kind, s.directions, s.size, s.layers, s.instances};
   diagonal_ = std::max(context.scene.bounds.diagonal(), 1e-6f);
   if (c.geometry() || c.lights || c.materials) lights_ = LightPicker::build(context.scene);
   if (wanted.kind != built_.kind || wanted.directions != built_.directions)
@@ -99,6 +103,7 @@ void LhbTechnique::prepare(const PrepareContext& context) {
     ls.size = s.size;
     ls.layers = s.layers;
     ls.dynamic_layers = s.layers;
+    ls.max_instances = s.instances;
     buffers_.build(context.scene, directions_.directions(), ls);
     built_ = wanted;
   } else if (c.geometry()) {

@@ -20,6 +20,7 @@ struct LhbTechniqueSettings {
   int directions = 320;      // count (the nearest a subdivided solid offers)
   int size = 128;            // N: texels per side of each buffer
   int layers = 16;           // L: elements per texel
+  int instances = 8;         // moving meshes with buffers of their own (LhbSettings)
   int paths = 1;             // per pixel per frame
   int bounces = 2;           // indirect bounces
   float cone_radius = 1.5f;  // texels
@@ -52,8 +53,8 @@ class LhbTechnique final : public Technique {
   std::vector<TechniqueOption> options() const override;
   std::vector<std::string> still_defaults() const override;
   // Builds the direction set and the buffers when the scene or the buffer parameters change;
-  // rebuilds only the moving meshes' buffers when meshes move; the light picker on light,
-  // material or geometry changes.
+  // when meshes move, re-poses their instances and rebuilds only the moving slab; the light
+  // picker on light, material or geometry changes.
   // The layered hit buffers (and their moving-mesh copy in animated scenes).
   uint64_t memory_estimate(const Scene& scene) const override;
   // Bytes of the buffers for `directions` directions of size x size texels and `layers` layers.
@@ -71,7 +72,7 @@ class LhbTechnique final : public Technique {
 
  private:
   struct BuiltWith {
-    int kind = -1, directions = 0, size = 0, layers = 0;
+    int kind = -1, directions = 0, size = 0, layers = 0, instances = 0;
     bool operator==(const BuiltWith&) const = default;
   };
 

@@ -117,8 +117,7 @@ BOUNCE_HD inline vec3 lhb_incoming(const LhbScene& ls, const LhbGatherSettings& 
     const LhbHit h = lhb_closest(ls.buffers, dir, x.position, 0.0f, jitter, x_prim);
     ++counters.rays;
     if (!h.valid()) break;
-    const vec3 p = lhb_hit_point(ls.buffers, dir, x.position, jitter, h);
-    const Hit hit = lhb_hit_on(ls.path.scene, h.prim, p, h.t);
+    const Hit hit = lhb_hit_on(ls.path.scene, h.prim, h.point, h.t);
     const SurfaceHit y = surface_at(ls.path.scene, hit, d);
     // Light from a surface that faces away from x (seen from behind through a texel's
     // approximation) does not arrive.

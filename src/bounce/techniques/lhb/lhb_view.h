@@ -6,7 +6,8 @@
 // as elements {depth along d, global triangle id}, sorted by depth, at most `layers` of them.
 // Two slabs share that layout: the static part of the scene (built once) and the meshes that move
 // (rebuilt every frame); a query reads both (the seed's two counter sets, kept apart here so the
-// static slab is never copied).
+// static slab is never copied). Large moving meshes are instances instead: buffers of their own,
+// built once in their own frame, that a query enters through the mesh's current transform.
 #pragma once
 
 #include <cstddef>
@@ -56,12 +57,31 @@ struct LhbSlabView {
   BOUNCE_HD const LhbElement* list(size_t texel) const { return elements + texel * size_t(layers); }
 };
 
+// A moving mesh whose motion is affine (every motion this engine's animation and edits make):
+// its buffers are built once in the pose it had then, its "object space", and re-posed by a
+// transform each frame instead of rasterized again. world = linear * object + offset.
+struct LhbInstanceView {
+  mat3 linear{1.0f}, inverse{1.0f};
+  vec3 offset{0.0f};
+  vec3 box_lo{0.0f}, box_hi{0.0f};         // the mesh's box in its own space, a texel wider
+  const LhbFrame* frames = nullptr;        // one per direction, over the mesh's own box
+  const uint16_t* direction_of = nullptr;  // world direction -> nearest object-space direction
+  int size = 0;                            // texels per side
+  LhbSlabView slab;
+
+  BOUNCE_HD size_t texel(int direction, int x, int y) const {
+    return (size_t(direction) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+  }
+};
+
 struct LhbView {
   const LhbFrame* frames = nullptr;
   int direction_count = 0;
   int size = 0;  // texels per side
   LhbSlabView static_slab;
-  LhbSlabView dynamic_slab;  // empty when no mesh moves
+  LhbSlabView dynamic_slab;  // empty when no mesh moves, or when every moving mesh is an instance
+  const LhbInstanceView* instances = nullptr;
+  int instance_count = 0;
 
   BOUNCE_HD size_t texel(int direction, int x, int y) const {
     return (size_t(direction) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
@@ -70,6 +90,7 @@ struct LhbView {
 
 static_assert(std::is_trivially_copyable_v<LhbFrame>);
 static_assert(std::is_trivially_copyable_v<LhbElement>);
+static_assert(std::is_trivially_copyable_v<LhbInstanceView>);
 static_assert(std::is_trivially_copyable_v<LhbView>);
 
 }  // namespace bounce
