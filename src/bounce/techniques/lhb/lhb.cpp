@@ -158,6 +158,20 @@ void LhbTechnique::indirect(const FrameContext& context, Image& out) {
     return;
   }
   const int n = settings_.filter ? settings_.interleave : 1;
+  if (n <= 1) {
+    // No filter (the real-time default): the window is the pixel itself, so the filter is the
+    // albedo times the incoming light where there is a surface, a row loop the compiler
+    // vectorises (the windowed body costs about 2 ms a frame at 512x512 for this).
+    parallel_for(
+        size_t(g.height),
+        [&](size_t y) {
+          const size_t row = y * size_t(g.width);
+          lhb_albedo_times_incoming(view.albedo + row, view.primitive + row, incoming + row,
+                                    pixels + row, g.width);
+        },
+        4);
+    return;
+  }
   const float normal_dot = settings_.filter_normal, distance = settings_.filter_distance;
   parallel_for_2d(g.width, g.height, [&](int x, int y) {
     pixels[view.index(x, y)] =

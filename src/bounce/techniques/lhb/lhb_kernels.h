@@ -149,6 +149,21 @@ BOUNCE_HD inline vec3 lhb_pixel(const LhbScene& ls, const LhbGatherSettings& set
   return sum / float(settings.paths);
 }
 
+// What the discontinuity filter gives with a window of one pixel, for a row of `count` pixels:
+// the albedo times the incoming light where there is a surface, 0 elsewhere.
+BOUNCE_HD inline void lhb_albedo_times_incoming(const vec3* albedo, const uint32_t* primitive,
+                                                const vec3* incoming, vec3* out, int count) {
+  // Over the floats, masked by a 0/1 factor (both inputs are finite: the estimates are, and the
+  // G-buffer's albedo is): a loop the compiler vectorises.
+  const float* a = &albedo[0].x;
+  const float* in = &incoming[0].x;
+  float* o = &out[0].x;
+  for (int i = 0; i < count; ++i) {
+    const float hit = float(primitive[i] != kNoPrimitive);
+    for (int c = 0; c < 3; ++c) o[3 * i + c] = hit * (a[3 * i + c] * in[3 * i + c]);
+  }
+}
+
 // The discontinuity buffer (seed 001 section 5.6 names it; Keller 1998, Wald et al. 2002): the
 // incoming indirect light of pixel (x, y) averaged over the n x n window around it, taking only
 // neighbours on the same surface (normals within normal_dot, positions within `distance` of each
