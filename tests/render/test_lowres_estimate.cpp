@@ -89,6 +89,63 @@ TEST(LowResEstimate, WithoutTheEdgeTestTheStepIsBlurred) {
   EXPECT_FLOAT_EQ(out.at(8, 5).x, 1.75f);
 }
 
+// A plane over columns x < 12 and nothing beyond (a background), but for one pixel at (14, 6)
+// whose four samples all see nothing. Radiance grows with x, so a blend that counted the missing
+// samples as black would read low.
+struct PlaneAndBackground {
+  std::vector<vec3> position, normal;
+  std::vector<uint32_t> primitive;
+  PlaneAndBackground() : position(kSize * kSize), normal(kSize * kSize), primitive(kSize * kSize) {
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const size_t i = size_t(y) * kSize + size_t(x);
+        const bool hit = x < 12 || (x == 14 && y == 6);
+        position[i] = hit ? vec3(0.1f * float(x), 0.1f * float(y), 1.0f) : vec3(0.0f);
+        normal[i] = hit ? vec3(0, 0, 1) : vec3(0.0f);
+        primitive[i] = hit ? 0 : kNoPrimitive;
+      }
+  }
+  ConstGBufferView view() const {
+    ConstGBufferView g;
+    g.position = position.data();
+    g.normal = normal.data();
+    g.primitive = primitive.data();
+    g.width = g.height = kSize;
+    return g;
+  }
+};
+
+TEST(LowResEstimate, SamplesThatMissAreReestimatedOrBlendedAround) {
+  const PlaneAndBackground scene;
+  std::vector<vec3> pixels(kSize * kSize, vec3(-1.0f));
+  const ImageView out{pixels.data(), kSize, kSize};
+  std::atomic<int> calls{0};
+  std::atomic<int>* counter = &calls;
+  const ConstGBufferView g = scene.view();
+  const auto estimate = [counter, g](int x, int y) {
+    counter->fetch_add(1);
+    return g.hit(g.index(x, y)) ? vec3(1.0f + 0.1f * float(x)) : vec3(0.0f);
+  };
+  LowResBuffers low;
+  StageTimes times;
+  // Samples at x = 2 lx + 1: column 11 blends sample 11 (3/4) with sample 13, which missed.
+  EdgeTest edges{-1.0f, 1e9f, false, true};
+  EXPECT_EQ(estimate_at_low_res(g, 2, edges, estimate, low, out, times), size_t(kSize + 1));
+  EXPECT_EQ(calls.load(), 64 + kSize + 1);
+  for (int y = 0; y < kSize; ++y) EXPECT_FLOAT_EQ(out.at(11, y).x, 2.1f);  // its own estimate
+  // Blended instead: column 11 takes sample 11 alone; only the island, whose samples all
+  // missed, is estimated itself.
+  edges.misses = false;
+  calls = 0;
+  EXPECT_EQ(estimate_at_low_res(g, 2, edges, estimate, low, out, times), 1u);
+  EXPECT_EQ(calls.load(), 64 + 1);
+  for (int y = 0; y < kSize; ++y) EXPECT_FLOAT_EQ(out.at(11, y).x, 2.1f) << y;
+  EXPECT_FLOAT_EQ(out.at(14, 6).x, 2.4f);
+  // Pixels whose blend took no missing sample are the same either way.
+  EXPECT_FLOAT_EQ(out.at(9, 4).x, 0.75f * 1.9f + 0.25f * 2.1f);  // samples 9 and 11
+  EXPECT_EQ(out.at(13, 2), vec3(0.0f));                          // no surface
+}
+
 TEST(LowResEstimate, FactorOneEstimatesEveryPixel) {
   const TwoPlanes planes;
   std::vector<vec3> pixels(kSize * kSize);

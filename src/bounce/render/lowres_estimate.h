@@ -19,12 +19,19 @@ struct EdgeSettings {
   float normal = 0.99f;    // re-estimate at full resolution below this normal agreement
   float distance = 0.01f;  // ... or beyond this position gap, relative to the scene diagonal
   bool show = false;       // debug view: re-estimated pixels in yellow
+  bool misses = true;      // re-estimate where a blended sample missed (else blend those that hit)
 
-  EdgeTest test(float diagonal) const { return {normal, distance * diagonal, show}; }
+  EdgeTest test(float diagonal) const { return {normal, distance * diagonal, show, misses}; }
   // No pixel re-estimated for its normal or position (only blocks whose sample misses): where
   // the denoiser's edge-stopping filter does the job.
   static EdgeSettings none() { return {-1.0f, 1.0f}; }
 };
+
+// `s` with misses blended rather than re-estimated.
+inline EdgeSettings blend_misses(EdgeSettings s) {
+  s.misses = false;
+  return s;
+}
 
 // The edge test's parameters, under the same names for every technique that estimates at low
 // resolution (edge_normal, edge_distance, show_edges).
@@ -33,6 +40,9 @@ inline void add_edge_params(ParamSet& params, EdgeSettings& s) {
   params.add_float("edge_distance", &s.distance, 0.0, 1.0,
                    "edge test: position gap / scene diagonal");
   params.add_bool("show_edges", &s.show, "show re-estimated pixels in yellow");
+  params.add_bool("edge_misses", &s.misses,
+                  "edge test: re-estimate pixels whose blend takes a block sample that saw no "
+                  "surface (else blend the samples that did)");
 }
 
 // The low-resolution samples, kept across frames so that their storage is reused.

@@ -45,6 +45,9 @@ struct EdgeTest {
   float min_normal_dot = 0.99f;  // re-estimate below this agreement of normals
   float max_gap = 0.0f;          // ... or beyond this distance between positions
   bool show_edges = false;       // mark re-estimated pixels yellow instead (debug view)
+  // Re-estimate a pixel whose blend takes a sample that missed (a block whose centre sees no
+  // surface); else blend only the samples that hit, re-estimating only where none did.
+  bool misses = true;
 };
 
 // Low-resolution sample (lx, ly): the estimate at the block's centre pixel.
@@ -77,19 +80,25 @@ BOUNCE_HD inline UpsampleRow upsample_row(const ConstLowResView& low, int y) {
 // low-resolution rows once (upsample_column), and each pixel blends the two columns on either
 // side of it (upsample_blend). A CPU row loop computes the row's columns once for all its
 // pixels; a GPU thread computes its two.
+// The column's sums take only the samples that hit (a sample that missed has weight 0 in them);
+// `weight` is what their weights add up to.
 struct UpsampleColumn {
   vec3 radiance{0.0f}, normal{0.0f}, position{0.0f};
+  float weight = 0.0f;
   bool valid = false;  // every sample with weight in the blend hit a surface
 };
 BOUNCE_HD inline UpsampleColumn upsample_column(const ConstLowResView& low, const UpsampleRow& row,
                                                 int lx) {
   const size_t a = low.index(lx, row.ly0), b = low.index(lx, row.ly1);
-  const float w0 = 1.0f - row.fy, w1 = row.fy;
+  const float w0 = low.valid[a] != 0 ? 1.0f - row.fy : 0.0f;
+  const float w1 = low.valid[b] != 0 ? row.fy : 0.0f;
   UpsampleColumn c;
   c.radiance = w0 * low.radiance[a] + w1 * low.radiance[b];
   c.normal = w0 * low.normal[a] + w1 * low.normal[b];
   c.position = w0 * low.position[a] + w1 * low.position[b];
-  c.valid = (low.valid[a] != 0 || !(w0 > 0.0f)) && (low.valid[b] != 0 || !(w1 > 0.0f));
+  c.weight = w0 + w1;
+  c.valid =
+      (low.valid[a] != 0 || !(1.0f - row.fy > 0.0f)) && (low.valid[b] != 0 || !(row.fy > 0.0f));
   return c;
 }
 
@@ -105,8 +114,9 @@ BOUNCE_HD inline UpsampleSpan upsample_span(const ConstLowResView& low, int x) {
 }
 
 // The upsampled light at G-buffer pixel i from its two columns, and whether the pixel is an edge:
-// a sample with weight in the blend missed, or the blended normal or position disagrees with
-// the pixel's own. A pixel without a surface gets no light and is no edge.
+// a sample with weight in the blend missed (with edges.misses; else only when every one did),
+// or the blended normal or position disagrees with the pixel's own. A pixel without a surface
+// gets no light and is no edge.
 struct Upsampled {
   vec3 radiance{0.0f};
   bool edge = false;
@@ -116,15 +126,23 @@ BOUNCE_HD inline Upsampled upsample_blend(const ConstGBufferView& g, const EdgeT
                                           const UpsampleColumn& c1, float fx) {
   const float w0 = 1.0f - fx, w1 = fx;
   const vec3 normal = w0 * c0.normal + w1 * c1.normal;
-  const vec3 gap = g.position[i] - (w0 * c0.position + w1 * c1.position);
+  const vec3 radiance = w0 * c0.radiance + w1 * c1.radiance;
+  const vec3 position = w0 * c0.position + w1 * c1.position;
+  // The weight of the samples that hit: all of it when none missed (then nothing is divided, so
+  // that such blends stay as they were), else what renormalises the blend over those that hit.
+  const float weight = w0 * c0.weight + w1 * c1.weight;
+  const bool missed = (!c0.valid && w0 > 0.0f) || (!c1.valid && w1 > 0.0f);
+  const bool renormalise = missed && !edges.misses && weight > 0.0f;
+  const float scale = renormalise ? 1.0f / weight : 1.0f;
+  const vec3 gap = g.position[i] - scale * position;
   const float len = glm::length(normal);
   // The normal test without dividing by the blended normal's length (len > 0 there).
-  const bool edge = (!c0.valid && w0 > 0.0f) || (!c1.valid && w1 > 0.0f) || !(len > 0.0f) ||
+  const bool edge = (missed && !renormalise) || !(len > 0.0f) ||
                     glm::dot(g.normal[i], normal) < edges.min_normal_dot * len ||
                     glm::dot(gap, gap) > edges.max_gap * edges.max_gap;
   const bool hit = g.hit(i);
   Upsampled u;
-  u.radiance = hit ? w0 * c0.radiance + w1 * c1.radiance : vec3(0.0f);
+  u.radiance = hit ? scale * radiance : vec3(0.0f);
   u.edge = hit && edge;
   return u;
 }

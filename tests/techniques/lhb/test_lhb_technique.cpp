@@ -228,7 +228,7 @@ TEST(LhbTechnique, IsRegisteredWithItsParameters) {
   ASSERT_EQ(technique->name(), "lhb");
   for (const char* name : {"direction_set", "directions", "size", "layers", "paths", "bounces",
                            "cone_radius", "interleave", "filter", "lowres", "edge_normal",
-                           "edge_distance", "show_edges", "instances"})
+                           "edge_distance", "show_edges", "instances", "edge_misses"})
     EXPECT_NE(technique->params().find(name), nullptr) << name;
   EXPECT_THROW(technique->params().set("bounces", "-1"), Error);
   EXPECT_THROW(technique->params().set("directions", "100000"), Error);
