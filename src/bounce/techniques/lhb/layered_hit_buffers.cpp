@@ -67,6 +67,8 @@ void LayeredHitBuffers::build(const Scene& scene, std::span<const vec3> directio
 
   settings_ = settings;
   directions_.assign(directions.begin(), directions.end());
+  // The nearest-direction lookup that maps a turned instance's directions.
+  direction_lookup_ = DirectionSet::from_directions(directions_, "hit buffer directions");
   dynamic_meshes_.assign(dynamic_meshes.begin(), dynamic_meshes.end());
   for (const AnimatedMesh& a : scene.animation.meshes) dynamic_meshes_.push_back(a.mesh);
   std::sort(dynamic_meshes_.begin(), dynamic_meshes_.end());
@@ -215,20 +217,10 @@ bool LayeredHitBuffers::capture(const Scene& scene, Instance& inst, size_t texel
 
 void LayeredHitBuffers::map_directions(Instance& inst) const {
   const mat3 inverse = glm::inverse(inst.pose.linear);
+  const DirectionSetView lookup = direction_lookup_.view();
   inst.direction_of.resize(directions_.size());
-  for (size_t k = 0; k < directions_.size(); ++k) {
-    const vec3 w = glm::normalize(inverse * directions_[k]);
-    size_t best = 0;
-    float best_dot = -2.0f;
-    for (size_t j = 0; j < directions_.size(); ++j) {
-      const float d = glm::dot(w, directions_[j]);
-      if (d > best_dot) {
-        best_dot = d;
-        best = j;
-      }
-    }
-    inst.direction_of[k] = uint16_t(best);
-  }
+  for (size_t k = 0; k < directions_.size(); ++k)
+    inst.direction_of[k] = uint16_t(lookup.nearest(glm::normalize(inverse * directions_[k])));
 }
 
 bool LayeredHitBuffers::repose(const Scene& scene, Instance& inst) {

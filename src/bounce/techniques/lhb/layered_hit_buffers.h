@@ -17,6 +17,7 @@
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
 #include "bounce/techniques/lhb/affine_pose.h"
+#include "bounce/techniques/lhb/direction_sets.h"
 #include "bounce/techniques/lhb/lhb_view.h"
 #include "bounce/trace/ray.h"
 
@@ -139,6 +140,7 @@ class LayeredHitBuffers {
 
   LhbSettings settings_;
   std::vector<vec3> directions_;
+  DirectionSet direction_lookup_;  // the same directions, for the nearest-direction lookup
   std::vector<LhbFrame> frames_;
   Bounds region_;  // the world box every buffer covers
   std::vector<uint32_t> static_meshes_, dynamic_meshes_;  // dynamic: every moving mesh
