@@ -16,6 +16,7 @@
 #include "bounce/trace/ray.h"
 #include "bounce/trace/tracer.h"
 #include "scene/hand_built_scenes.h"
+#include "techniques/lhb/surface_rays.h"
 
 namespace bounce {
 namespace {
@@ -137,23 +138,12 @@ double same_triangle_fraction(const Scene& s, const LayeredHitBuffers& lhb,
   int rays = 0, same = 0;
   while (rays < count) {
     const uint32_t m = rng.next_below(4) == 0 ? 1 : 0;
-    const Mesh& mesh = s.meshes[m];
-    const uint32_t t = rng.next_below(uint32_t(mesh.triangles.size()));
-    const vec3 n_area = mesh.face_normal_area2(t);
-    if (glm::length(n_area) == 0.0f) continue;
-    const vec3 n = glm::normalize(n_area);
-    const int d = int(rng.next_below(uint32_t(dirs.size())));
-    if (glm::dot(n, dirs[size_t(d)]) < 0.2f) continue;
-    vec2 b = rng.next2();
-    if (b.x + b.y > 1.0f) b = vec2(1.0f) - b;
-    const uvec3 i = mesh.triangles[t];
-    const vec3 p = mesh.positions[i.x] + b.x * (mesh.positions[i.y] - mesh.positions[i.x]) +
-                   b.y * (mesh.positions[i.z] - mesh.positions[i.x]);
-    const vec3 o = offset_origin(p, n);
-    const Hit want = embree->intersect(Ray{o, 0.0f, dirs[size_t(d)]});
+    const std::optional<lhb_test::SurfaceRay> r = lhb_test::draw_surface_ray(s, m, dirs, rng);
+    if (!r) continue;
+    const int d = r->direction;
+    const Hit want = embree->intersect(Ray{r->origin, 0.0f, dirs[size_t(d)]});
     if (!want.valid() || m != 0 || want.mesh != 1) continue;
-    const uint32_t skip = s.triangle_offsets[m] + t;
-    const LhbHit got = lhb_closest(view, d, o, 0.0f, vec2(0.0f), skip);
+    const LhbHit got = lhb_closest(view, d, r->origin, 0.0f, vec2(0.0f), r->prim);
     ++rays;
     same += got.valid() && got.prim >= s.triangle_offsets[1] &&
             std::abs(got.t - want.t) <= 2.0f * lhb.texel_size(d);
