@@ -3,6 +3,7 @@
 // estimated at full resolution, the others are interpolated, and the counts are exact.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <vector>
 
@@ -14,18 +15,11 @@ namespace {
 constexpr int kSize = 16;
 constexpr int kStep = 8;  // columns x < kStep lie on the near plane (z = 1), the rest at z = 3
 
-struct TwoPlanes {
-  std::vector<vec3> position, normal;
-  std::vector<uint32_t> primitive;
-  TwoPlanes() : position(kSize * kSize), normal(kSize * kSize, vec3(0, 0, 1)) {
-    primitive.resize(kSize * kSize);
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x) {
-        const size_t i = size_t(y) * kSize + size_t(x);
-        position[i] = vec3(0.1f * float(x), 0.1f * float(y), x < kStep ? 1.0f : 3.0f);
-        primitive[i] = x < kStep ? 0 : 1;
-      }
-  }
+// The G-buffer planes the low-resolution estimate reads, kSize x kSize.
+struct SmallGBuffer {
+  std::vector<vec3> position = std::vector<vec3>(kSize * kSize);
+  std::vector<vec3> normal = std::vector<vec3>(kSize * kSize);
+  std::vector<uint32_t> primitive = std::vector<uint32_t>(kSize * kSize);
   ConstGBufferView view() const {
     ConstGBufferView g;
     g.position = position.data();
@@ -33,6 +27,18 @@ struct TwoPlanes {
     g.primitive = primitive.data();
     g.width = g.height = kSize;
     return g;
+  }
+};
+
+struct TwoPlanes : SmallGBuffer {
+  TwoPlanes() {
+    std::fill(normal.begin(), normal.end(), vec3(0, 0, 1));
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const size_t i = size_t(y) * kSize + size_t(x);
+        position[i] = vec3(0.1f * float(x), 0.1f * float(y), x < kStep ? 1.0f : 3.0f);
+        primitive[i] = x < kStep ? 0 : 1;
+      }
   }
 };
 
@@ -92,10 +98,8 @@ TEST(LowResEstimate, WithoutTheEdgeTestTheStepIsBlurred) {
 // A plane over columns x < 12 and nothing beyond (a background), but for one pixel at (14, 6)
 // whose four samples all see nothing. Radiance grows with x, so a blend that counted the missing
 // samples as black would read low.
-struct PlaneAndBackground {
-  std::vector<vec3> position, normal;
-  std::vector<uint32_t> primitive;
-  PlaneAndBackground() : position(kSize * kSize), normal(kSize * kSize), primitive(kSize * kSize) {
+struct PlaneAndBackground : SmallGBuffer {
+  PlaneAndBackground() {
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
         const size_t i = size_t(y) * kSize + size_t(x);
@@ -104,14 +108,6 @@ struct PlaneAndBackground {
         normal[i] = hit ? vec3(0, 0, 1) : vec3(0.0f);
         primitive[i] = hit ? 0 : kNoPrimitive;
       }
-  }
-  ConstGBufferView view() const {
-    ConstGBufferView g;
-    g.position = position.data();
-    g.normal = normal.data();
-    g.primitive = primitive.data();
-    g.width = g.height = kSize;
-    return g;
   }
 };
 
