@@ -254,5 +254,81 @@ TEST(LhbInstances, AnInstanceMayLeaveTheRegionAndADeformedOneIsCapturedAgain) {
   EXPECT_EQ(lhb.stats().static_builds, 1u);
 }
 
+// Three balls over a floor, of 512, 288 and 128 triangles, each about a third of the floor wide.
+Scene floor_and_three_balls() {
+  Scene s;
+  s.source = "floor and three balls";
+  s.materials.push_back(Material{});
+  s.meshes.push_back(quad_mesh("floor", vec3(0, 0, 0), vec3(0, 0, 6), vec3(6, 0, 0), 0));
+  s.meshes.push_back(bumpy_ball(16, vec3(1.0f, 1.0f, 1.0f), 0.6f));
+  s.meshes.push_back(bumpy_ball(12, vec3(3.0f, 1.0f, 3.0f), 0.6f));
+  s.meshes.push_back(bumpy_ball(8, vec3(5.0f, 1.0f, 5.0f), 0.6f));
+  s.finalize();
+  return s;
+}
+
+// A ray straight down over each ball's centre meets that ball, as Embree says.
+void expect_each_ball_hit(const Scene& s, const LayeredHitBuffers& lhb) {
+  const auto embree = make_embree_tracer(s);
+  for (uint32_t m = 1; m < s.meshes.size(); ++m) {
+    Bounds b;
+    for (const vec3& p : s.meshes[m].positions) b.extend(p);
+    const Ray down{vec3(b.centre().x, 8.0f, b.centre().z), 0.0f, vec3(0, -1, 0)};
+    const Hit want = embree->intersect(down), got = lhb.closest_hit(down, 0);
+    ASSERT_TRUE(got.valid()) << "ball " << m;
+    EXPECT_EQ(got.mesh, want.mesh) << "ball " << m;
+    EXPECT_NEAR(got.t, want.t, 2.0f * lhb.texel_size(0)) << "ball " << m;
+  }
+}
+
+TEST(LhbInstances, TheLargestMeshesAreInstancesWithinTheirCountAndTheirTexels) {
+  Scene s = floor_and_three_balls();
+  const std::vector<vec3> dirs = {vec3(0, -1, 0), vec3(0, 1, 0)};
+  const std::vector<uint32_t> moving = {1, 2, 3};
+  // At most two instances: the two largest balls; the third shares the moving slab.
+  LayeredHitBuffers two;
+  two.build(s, dirs, {.size = 64, .layers = 8, .max_instances = 2, .instance_min_triangles = 1},
+            moving);
+  EXPECT_EQ(two.instance_meshes(), (std::vector<uint32_t>{1, 2}));
+  EXPECT_EQ(two.stats().dynamic_triangles, s.meshes[3].triangles.size());
+  expect_each_ball_hit(s, two);
+
+  // The three balls grown 4x about the floor's centre, each nearly as wide as the buffers'
+  // region: the first instance takes most of one slab's texels, the others do not fit beside it
+  // and share the slab.
+  std::vector<std::vector<vec3>> rest;
+  for (uint32_t m : moving) rest.push_back(s.meshes[m].positions);
+  for (size_t k = 0; k < moving.size(); ++k) {
+    const vec3 c(2.0f * float(k) + 1.0f, 1.0f, 2.0f * float(k) + 1.0f);
+    pose(s, moving[k], rest[k],
+         trs(vec3(3, 1, 3), 0.0f, vec3(0, 1, 0), vec3(4.0f)) *
+             trs(-c, 0.0f, vec3(0, 1, 0), vec3(1.0f)));
+  }
+  LayeredHitBuffers big;
+  big.build(s, dirs, {.size = 64, .layers = 8, .instance_min_triangles = 1}, moving);
+  EXPECT_EQ(big.instance_meshes(), std::vector<uint32_t>{1});
+  EXPECT_LE(big.stats().instance_texels, size_t(dirs.size()) * 64u * 64u);
+  EXPECT_EQ(big.stats().dynamic_triangles,
+            s.meshes[2].triangles.size() + s.meshes[3].triangles.size());
+
+  // Back to their places, all three instances; then ball 1 collapses onto a line, which no
+  // instance can hold (it fits no map, and a capture needs a plane): it moves to the slab, and
+  // follows there when it comes back.
+  for (size_t k = 0; k < moving.size(); ++k) pose(s, moving[k], rest[k], mat4(1.0f));
+  LayeredHitBuffers all;
+  all.build(s, dirs, {.size = 64, .layers = 8, .instance_min_triangles = 1}, moving);
+  EXPECT_EQ(all.instance_meshes(), (std::vector<uint32_t>{1, 2, 3}));
+  SceneChange change;
+  change.moved_meshes = {1};
+  for (vec3& p : s.meshes[1].positions) p = vec3(p.x, 1.0f, 1.0f);
+  s.derive();
+  all.update(s, change);
+  EXPECT_EQ(all.instance_meshes(), (std::vector<uint32_t>{2, 3}));
+  EXPECT_EQ(all.stats().dynamic_triangles, s.meshes[1].triangles.size());
+  pose(s, 1, rest[0], trs(vec3(0.5f, 0, 0), 0.0f, vec3(0, 1, 0), vec3(1.0f)));
+  all.update(s, change);
+  expect_each_ball_hit(s, all);
+}
+
 }  // namespace
 }  // namespace bounce
