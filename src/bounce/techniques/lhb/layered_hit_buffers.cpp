@@ -235,7 +235,8 @@ bool LayeredHitBuffers::repose(const Scene& scene, Instance& inst) {
       keep = glm::length(map->linear[c]) <= 2.0f && glm::length(inverse[c]) <= 2.0f;
   }
   if (!keep) {
-    // Not an affine move: rasterize the mesh again in its new pose, in the texels it has.
+    // Not an affine move (or too far a stretch): capture the mesh again in its new pose, with
+    // texels sized for it, if it still fits beside the other instances.
     const size_t used = instance_texels() - inst.slab.texels;
     const size_t budget = frames_.size() * size_t(settings_.size) * size_t(settings_.size);
     return capture(scene, inst, budget > used ? budget - used : 0);
