@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bounce/core/rng.h"
+#include "bounce/scene/animation.h"
+#include "bounce/scene/load.h"
 #include "bounce/techniques/lhb/affine_pose.h"
 #include "bounce/techniques/lhb/direction_sets.h"
 #include "bounce/techniques/lhb/layered_hit_buffers.h"
@@ -328,6 +331,39 @@ TEST(LhbInstances, TheLargestMeshesAreInstancesWithinTheirCountAndTheirTexels) {
   pose(s, 1, rest[0], trs(vec3(0.5f, 0, 0), 0.0f, vec3(0, 1, 0), vec3(1.0f)));
   all.update(s, change);
   expect_each_ball_hit(s, all);
+}
+
+TEST(LhbInstances, TheKeyframedBallOfDynamicBallIsReposedAlongItsPath) {
+  // scenes/dynamic-ball.bounce.json: a 4,512-triangle ball turning and moving on keyframes in
+  // the Cornell box, posed by animate() as the viewer, sequence and bench --animate do.
+  Scene s = load_scene(std::string(BOUNCE_SOURCE_DIR) + "/scenes/dynamic-ball.bounce.json");
+  ASSERT_EQ(s.animation.meshes.size(), 1u);
+  const uint32_t ball = s.animation.meshes[0].mesh;
+  animate(s, 0.0f);
+  const DirectionSet set = DirectionSet::icosahedron(1);
+  LayeredHitBuffers lhb;
+  lhb.build(s, set.directions(), {.size = 64, .layers = 8});
+  EXPECT_EQ(lhb.instance_meshes(), std::vector<uint32_t>{ball});
+  // Sideways at the ball's height, above both blocks (the ceiling is close over it).
+  const int across = set.nearest(vec3(1, 0, 0));
+  const vec3 d = set.directions()[size_t(across)];
+  for (const float t : {0.5f, 1.5f, 2.25f, 3.75f}) {
+    const SceneChange change = animate(s, t);
+    ASSERT_EQ(change.moved_meshes, std::vector<uint32_t>{ball});
+    EXPECT_TRUE(lhb.update(s, change));
+    Bounds b;
+    for (const vec3& p : s.meshes[ball].positions) b.extend(p);
+    // From beside the ball's centre, along the buffer direction nearest to +x.
+    const Ray ray{b.centre() - 0.12f * d, 0.0f, d};
+    const Hit want = make_embree_tracer(s)->intersect(ray), got = lhb.closest_hit(ray, across);
+    ASSERT_TRUE(want.valid() && got.valid()) << t;
+    EXPECT_EQ(got.mesh, ball) << t;
+    EXPECT_EQ(want.mesh, ball) << t;
+    EXPECT_NEAR(got.t, want.t, 2.0f * lhb.texel_size(across)) << t;
+  }
+  EXPECT_EQ(lhb.stats().instance_captures, 1u);
+  EXPECT_EQ(lhb.stats().instance_reposes, 4u);
+  EXPECT_EQ(lhb.stats().static_builds, 1u);
 }
 
 }  // namespace
