@@ -89,15 +89,20 @@ TEST(AffinePose, AFlatMeshFollowsARotationScaleAndTranslation) {
   EXPECT_FALSE(AffineAnchors::choose(std::vector<vec3>{}));
 }
 
-// A 4 x 4 floor facing up and a ball of 512 triangles above it.
-Scene floor_and_ball() {
+// A `side` x `side` floor facing up (mesh 0) and balls above it (meshes 1, 2, ...).
+Scene floor_with(float side, std::vector<Mesh> balls) {
   Scene s;
-  s.source = "floor and ball";
+  s.source = "floor and balls";
   s.materials.push_back(Material{});
-  s.meshes.push_back(quad_mesh("floor", vec3(0, 0, 0), vec3(0, 0, 4), vec3(4, 0, 0), 0));
-  s.meshes.push_back(bumpy_ball(16, vec3(1.5f, 1.0f, 1.5f), 0.6f));
+  s.meshes.push_back(quad_mesh("floor", vec3(0, 0, 0), vec3(0, 0, side), vec3(side, 0, 0), 0));
+  for (Mesh& ball : balls) s.meshes.push_back(std::move(ball));
   s.finalize();
   return s;
+}
+
+// A 4 x 4 floor and a ball of 512 triangles above it.
+Scene floor_and_ball() {
+  return floor_with(4.0f, {bumpy_ball(16, vec3(1.5f, 1.0f, 1.5f), 0.6f)});
 }
 
 void pose(Scene& s, uint32_t m, const std::vector<vec3>& rest, const mat4& by) {
@@ -259,15 +264,9 @@ TEST(LhbInstances, AnInstanceMayLeaveTheRegionAndADeformedOneIsCapturedAgain) {
 
 // Three balls over a floor, of 512, 288 and 128 triangles, each about a third of the floor wide.
 Scene floor_and_three_balls() {
-  Scene s;
-  s.source = "floor and three balls";
-  s.materials.push_back(Material{});
-  s.meshes.push_back(quad_mesh("floor", vec3(0, 0, 0), vec3(0, 0, 6), vec3(6, 0, 0), 0));
-  s.meshes.push_back(bumpy_ball(16, vec3(1.0f, 1.0f, 1.0f), 0.6f));
-  s.meshes.push_back(bumpy_ball(12, vec3(3.0f, 1.0f, 3.0f), 0.6f));
-  s.meshes.push_back(bumpy_ball(8, vec3(5.0f, 1.0f, 5.0f), 0.6f));
-  s.finalize();
-  return s;
+  return floor_with(6.0f, {bumpy_ball(16, vec3(1.0f, 1.0f, 1.0f), 0.6f),
+                           bumpy_ball(12, vec3(3.0f, 1.0f, 3.0f), 0.6f),
+                           bumpy_ball(8, vec3(5.0f, 1.0f, 5.0f), 0.6f)});
 }
 
 // A ray straight down over each ball's centre meets that ball, as Embree says.
