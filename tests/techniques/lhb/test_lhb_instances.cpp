@@ -193,11 +193,12 @@ TEST(LhbInstances, ARigidMoveIsFollowedByATransformWithoutRasterizing) {
     const double moved = same_triangle_fraction(s, lhb, dirs, 2000, 5);
     const double seed = same_triangle_fraction(s, rebuilt, dirs, 2000, 5);
     const double ignored = same_triangle_fraction(s, stale, dirs, 2000, 5);
-    // As good as rasterizing again for a translation (measured: 0.952 both); a rotation adds the
-    // snap of the direction into the ball's own set from where the ray enters its box (0.907
-    // against 0.961, 0.876 against 0.958); far better than not following (0.010, 0.120).
-    EXPECT_GE(moved, seed - 0.1) << "rebuilt " << seed;
-    EXPECT_GE(moved, 0.8);
+    // As good as rasterizing again: measured 0.956, 0.953 and 0.948 against 0.952, 0.961 and
+    // 0.958 (a turned ball is walked along the ray's own direction across the texels of its
+    // nearest one; without that walk, 0.907 and 0.876); far better than not following (0.014,
+    // 0.124).
+    EXPECT_GE(moved, seed - 0.03) << "rebuilt " << seed;
+    EXPECT_GE(moved, 0.9);
     if (moves_away) EXPECT_LT(ignored, moved - 0.3) << "moved " << moved;
   }
   const LhbStats after = lhb.stats();

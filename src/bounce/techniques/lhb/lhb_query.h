@@ -43,10 +43,13 @@ BOUNCE_HD inline LhbHit lhb_first_beyond(const LhbElement* list, int count, floa
 
 // An instance's answer for world point `o` (already jittered) along world direction `d`, buffer
 // `direction`, replacing `best` when nearer. In the mesh's own space the ray runs along
-// w = inverse * d; it first goes to where it enters the mesh's box, then along the instance's
-// nearest direction to w (w itself when the mesh only translates), so that the gap between the
-// two directions only counts from the box on, not from wherever the ray started. The hit comes
-// back to the world as a point and a distance along d.
+// w = inverse * d, which the instance's nearest direction f.d only approximates when the mesh
+// has turned. So the ray enters the mesh's box and then walks the texels of f's grid that it
+// crosses: in each texel, between the depths (along f.d) where it comes in and goes out, the
+// first element is its hit (within a texel's depth of either end: elements sit at texel
+// centres). For a mesh that only translated, w is f.d and the walk is one texel, the same list
+// walk as the scene's buffers. The hit comes back to the world as a point on the ray and a
+// distance along d.
 BOUNCE_HD inline void lhb_closest_instance(const LhbInstanceView& inst, int direction, vec3 o,
                                            vec3 d, float tmin, uint32_t skip, LhbHit& best) {
   const vec3 po = inst.inverse * (o - inst.offset);
@@ -69,19 +72,52 @@ BOUNCE_HD inline void lhb_closest_instance(const LhbInstanceView& inst, int dire
   const int j = inst.direction_of[direction];
   const LhbFrame& f = inst.frames[j];
   const vec3 start = po + enter * w;
-  const vec2 xy = f.texel_coords(start);
-  const float fx = std::floor(xy.x), fy = std::floor(xy.y);
-  if (!(fx >= 0.0f && fy >= 0.0f && fx < float(inst.size) && fy < float(inst.size))) return;
-  const size_t texel = inst.texel(j, int(fx), int(fy));
-  const float z = f.depth(start);
-  const LhbHit h = lhb_first_beyond(inst.slab.list(texel), inst.slab.kept(texel), z, skip);
-  if (!h.valid()) return;
-  const vec3 p = inst.linear * (start + (h.t - z) * f.d) + inst.offset;
-  const float t = glm::dot(p - o, d);
-  if (!(t < best.t)) return;
-  best.prim = h.prim;
-  best.t = t;
-  best.point = p;
+  // Per unit of depth along f.d the ray moves this many texels across (0 when w is f.d).
+  const float depth_rate = glm::dot(w, f.d);  // depth per world unit along d
+  if (!(depth_rate > 0.0f)) return;
+  const vec2 across(glm::dot(w, f.u) * f.scale_u / depth_rate,
+                    glm::dot(w, f.v) * f.scale_v / depth_rate);
+  const vec2 xy0 = f.texel_coords(start);
+  const float z0 = f.depth(start), z_end = z0 + (leave - enter) * depth_rate;
+  // A texel's depth: how far an element at its centre may lie from the surface under the ray.
+  const float slack = 1.0f / (f.scale_u < f.scale_v ? f.scale_u : f.scale_v);
+  float fx = std::floor(xy0.x), fy = std::floor(xy0.y);
+  float z_in = z0;
+  for (int step = 0; step <= 2 * inst.size + 1; ++step) {
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(inst.size) && fy < float(inst.size))) return;
+    // Where the ray leaves this texel: the nearer of its x and y exits (or the box's end).
+    float z_out = z_end, zx = z_end, zy = z_end;
+    if (across.x > 0.0f) zx = z0 + (fx + 1.0f - xy0.x) / across.x;
+    if (across.x < 0.0f) zx = z0 + (fx - xy0.x) / across.x;
+    if (across.y > 0.0f) zy = z0 + (fy + 1.0f - xy0.y) / across.y;
+    if (across.y < 0.0f) zy = z0 + (fy - xy0.y) / across.y;
+    z_out = zx < z_out ? zx : z_out;
+    z_out = zy < z_out ? zy : z_out;
+    const size_t texel = inst.texel(j, int(fx), int(fy));
+    const LhbElement* list = inst.slab.list(texel);
+    const int count = inst.slab.kept(texel);
+    const float lo = step == 0 ? z0 : z_in - slack, hi = z_out + slack;
+    for (int i = 0; i < count; ++i) {
+      const LhbElement e = list[i];
+      if (!(e.depth > lo) || !(e.depth > z0) || e.prim == skip) continue;
+      if (e.depth > hi && z_out < z_end) break;  // beyond this texel: a later one holds it
+      // On the ray where its depth is the element's.
+      const vec3 p = inst.linear * (start + ((e.depth - z0) / depth_rate) * w) + inst.offset;
+      const float t = glm::dot(p - o, d);
+      if (t < best.t) {
+        best.prim = e.prim;
+        best.t = t;
+        best.point = p;
+      }
+      return;
+    }
+    if (!(z_out < z_end)) return;
+    z_in = z_out;
+    if (zx <= zy)
+      fx += across.x > 0.0f ? 1.0f : -1.0f;
+    else
+      fy += across.y > 0.0f ? 1.0f : -1.0f;
+  }
 }
 
 // Closest hit from `origin` along buffer `direction`: elements with depth > depth(origin) + tmin,
