@@ -90,15 +90,15 @@ struct UpsampleColumn {
 BOUNCE_HD inline UpsampleColumn upsample_column(const ConstLowResView& low, const UpsampleRow& row,
                                                 int lx) {
   const size_t a = low.index(lx, row.ly0), b = low.index(lx, row.ly1);
-  const float w0 = low.valid[a] != 0 ? 1.0f - row.fy : 0.0f;
-  const float w1 = low.valid[b] != 0 ? row.fy : 0.0f;
+  const float f0 = 1.0f - row.fy, f1 = row.fy;
+  const bool hit_a = low.valid[a] != 0, hit_b = low.valid[b] != 0;
+  const float w0 = hit_a ? f0 : 0.0f, w1 = hit_b ? f1 : 0.0f;
   UpsampleColumn c;
   c.radiance = w0 * low.radiance[a] + w1 * low.radiance[b];
   c.normal = w0 * low.normal[a] + w1 * low.normal[b];
   c.position = w0 * low.position[a] + w1 * low.position[b];
   c.weight = w0 + w1;
-  c.valid =
-      (low.valid[a] != 0 || !(1.0f - row.fy > 0.0f)) && (low.valid[b] != 0 || !(row.fy > 0.0f));
+  c.valid = (hit_a || !(f0 > 0.0f)) && (hit_b || !(f1 > 0.0f));
   return c;
 }
 

@@ -199,7 +199,9 @@ TEST(LhbInstances, ARigidMoveIsFollowedByATransformWithoutRasterizing) {
     // 0.124).
     EXPECT_GE(moved, seed - 0.03) << "rebuilt " << seed;
     EXPECT_GE(moved, 0.9);
-    if (moves_away) EXPECT_LT(ignored, moved - 0.3) << "moved " << moved;
+    if (moves_away) {
+      EXPECT_LT(ignored, moved - 0.3) << "moved " << moved;
+    }
   }
   const LhbStats after = lhb.stats();
   EXPECT_EQ(after.instance_captures, 1u);  // never rasterized again

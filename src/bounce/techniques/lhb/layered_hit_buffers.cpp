@@ -103,8 +103,7 @@ void LayeredHitBuffers::build_static(const Scene& scene) {
   for (uint32_t m = 0; m < scene.meshes.size(); ++m)
     if (!std::binary_search(dynamic_meshes_.begin(), dynamic_meshes_.end(), m))
       static_meshes_.push_back(m);
-  allocate(static_, settings_.layers,
-           frames_.size() * size_t(settings_.size) * size_t(settings_.size));
+  allocate(static_, settings_.layers, slab_texels());
   rasterize(scene, static_meshes_, frames_, settings_.size, static_);
   static_build_ms_ = watch.elapsed_ms();
   ++static_builds_;
@@ -115,18 +114,31 @@ void LayeredHitBuffers::build_dynamic(const Scene& scene) {
     dynamic_ = Slab{};
     return;
   }
-  if (!dynamic_.elements)
-    allocate(dynamic_, settings_.dynamic_layers,
-             frames_.size() * size_t(settings_.size) * size_t(settings_.size));
+  if (!dynamic_.elements) allocate(dynamic_, settings_.dynamic_layers, slab_texels());
   triangle_offsets_ = scene.triangle_offsets;
   rasterize(scene, slab_meshes_, frames_, settings_.size, dynamic_);
   ++dynamic_builds_;
 }
 
-size_t LayeredHitBuffers::instance_texels() const {
-  size_t texels = 0;
-  for (const Instance& inst : instances_) texels += inst.slab.texels;
-  return texels;
+size_t LayeredHitBuffers::slab_texels() const {
+  return frames_.size() * size_t(settings_.size) * size_t(settings_.size);
+}
+
+size_t LayeredHitBuffers::texels_left(const Instance* except) const {
+  size_t used = 0;
+  for (const Instance& inst : instances_)
+    if (&inst != except) used += inst.slab.texels;
+  return slab_texels() > used ? slab_texels() - used : 0;
+}
+
+std::vector<LayeredHitBuffers::Instance>::iterator LayeredHitBuffers::find_instance(uint32_t mesh) {
+  return std::find_if(instances_.begin(), instances_.end(),
+                      [mesh](const Instance& inst) { return inst.mesh == mesh; });
+}
+
+void LayeredHitBuffers::refresh_views() {
+  instance_views_.clear();
+  for (const Instance& inst : instances_) instance_views_.push_back(inst.view());
 }
 
 void LayeredHitBuffers::assign_moving(const Scene& scene) {
@@ -143,24 +155,16 @@ void LayeredHitBuffers::assign_moving(const Scene& scene) {
   std::erase_if(instances_, [&](const Instance& inst) {
     return std::find(wanted.begin(), wanted.end(), inst.mesh) == wanted.end();
   });
-  const size_t budget = frames_.size() * size_t(settings_.size) * size_t(settings_.size);
   for (uint32_t m : wanted) {
-    if (std::any_of(instances_.begin(), instances_.end(),
-                    [m](const Instance& inst) { return inst.mesh == m; }))
-      continue;
+    if (find_instance(m) != instances_.end()) continue;
     Instance inst;
     inst.mesh = m;
-    const size_t used = instance_texels();
-    if (capture(scene, inst, budget > used ? budget - used : 0))
-      instances_.push_back(std::move(inst));
+    if (capture(scene, inst, texels_left())) instances_.push_back(std::move(inst));
   }
   slab_meshes_.clear();
   for (uint32_t m : dynamic_meshes_)
-    if (std::none_of(instances_.begin(), instances_.end(),
-                     [m](const Instance& inst) { return inst.mesh == m; }))
-      slab_meshes_.push_back(m);
-  instance_views_.clear();
-  for (const Instance& inst : instances_) instance_views_.push_back(inst.view());
+    if (find_instance(m) == instances_.end()) slab_meshes_.push_back(m);
+  refresh_views();
 }
 
 bool LayeredHitBuffers::capture(const Scene& scene, Instance& inst, size_t texel_budget) {
@@ -237,9 +241,7 @@ bool LayeredHitBuffers::repose(const Scene& scene, Instance& inst) {
   if (!keep) {
     // Not an affine move (or too far a stretch): capture the mesh again in its new pose, with
     // texels sized for it, if it still fits beside the other instances.
-    const size_t used = instance_texels() - inst.slab.texels;
-    const size_t budget = frames_.size() * size_t(settings_.size) * size_t(settings_.size);
-    return capture(scene, inst, budget > used ? budget - used : 0);
+    return capture(scene, inst, texels_left(&inst));
   }
   const bool turned = map->linear != inst.pose.linear;
   inst.pose = *map;
@@ -341,8 +343,7 @@ bool LayeredHitBuffers::update(const Scene& scene, const SceneChange& change) {
   bool slab_moved = newcomer;
   bool dropped = false;
   for (uint32_t m : change.moved_meshes) {
-    const auto inst = std::find_if(instances_.begin(), instances_.end(),
-                                   [m](const Instance& i) { return i.mesh == m; });
+    const auto inst = find_instance(m);
     if (inst == instances_.end()) {
       slab_moved = true;
     } else if (!repose(scene, *inst)) {
@@ -359,8 +360,7 @@ bool LayeredHitBuffers::update(const Scene& scene, const SceneChange& change) {
     return true;
   }
   if (slab_moved) build_dynamic(scene);
-  instance_views_.clear();
-  for (const Instance& inst : instances_) instance_views_.push_back(inst.view());
+  refresh_views();
   dynamic_build_ms_ = watch.elapsed_ms();
   return true;
 }

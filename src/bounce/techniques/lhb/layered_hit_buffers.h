@@ -136,7 +136,11 @@ class LayeredHitBuffers {
   void rasterize(const Scene& scene, std::span<const uint32_t> meshes,
                  std::span<const LhbFrame> frames, int size, Slab& slab) const;
   bool slab_inside_region(const Scene& scene) const;
-  size_t instance_texels() const;
+  size_t slab_texels() const;  // texels of one slab: directions x size^2
+  // What one slab's texels leave to instances, not counting `except`'s own.
+  size_t texels_left(const Instance* except = nullptr) const;
+  std::vector<Instance>::iterator find_instance(uint32_t mesh);
+  void refresh_views();  // instance_views_ from instances_
 
   LhbSettings settings_;
   std::vector<vec3> directions_;

@@ -57,6 +57,11 @@ struct LhbSlabView {
   BOUNCE_HD const LhbElement* list(size_t texel) const { return elements + texel * size_t(layers); }
 };
 
+// Texel (x, y) of buffer `direction` in a slab of size x size texels per direction.
+BOUNCE_HD inline size_t lhb_texel_index(int direction, int size, int x, int y) {
+  return (size_t(direction) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+}
+
 // A moving mesh whose motion is affine (every motion this engine's animation and edits make):
 // its buffers are built once in the pose it had then, its "object space", and re-posed by a
 // transform each frame instead of rasterized again. world = linear * object + offset.
@@ -70,7 +75,7 @@ struct LhbInstanceView {
   LhbSlabView slab;
 
   BOUNCE_HD size_t texel(int direction, int x, int y) const {
-    return (size_t(direction) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+    return lhb_texel_index(direction, size, x, y);
   }
 };
 
@@ -84,7 +89,7 @@ struct LhbView {
   int instance_count = 0;
 
   BOUNCE_HD size_t texel(int direction, int x, int y) const {
-    return (size_t(direction) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+    return lhb_texel_index(direction, size, x, y);
   }
 };
 
