@@ -57,6 +57,44 @@ struct LightRow {
   float distance[kWidth];
 };
 
+// The row's shadow selections (ShadowSelection's state as planes), so that each light's samples
+// are offered to the row's pixels in one loop the compiler vectorises.
+struct RowSelection {
+  static constexpr int kWidth = LightRow::kWidth;
+  uint32_t seed[kWidth], offers[kWidth];
+  float kept[kWidth], total[kWidth], distance[kWidth];
+  vec3 wi[kWidth], radiance[kWidth];
+
+  void start(uint32_t i0, int width, const DirectSettings& settings) {
+    for (int j = 0; j < width; ++j) {
+      seed[j] = ShadowSelection::for_pixel(i0 + uint32_t(j), settings).seed;
+      offers[j] = 0;
+      kept[j] = total[j] = distance[j] = 0.0f;
+      store3(wi, j, vec3(0.0f));
+      store3(radiance, j, vec3(0.0f));
+    }
+  }
+
+  // Offers the row's samples of one light (ShadowSelection::operator() per pixel, as selects).
+  void offer(const LightRow& row, int width) {
+    BOUNCE_IVDEP
+    for (int j = 0; j < width; ++j) {
+      const vec3 r = load3(row.radiance, j);
+      const float w = luminance(r);
+      const bool carries = w > 0.0f;
+      const float sum = total[j] + pick(carries, w, 0.0f);
+      const bool take =
+          carries & ShadowSelection::takes(ShadowSelection::u(seed[j], offers[j]), sum, w, kept[j]);
+      offers[j] += uint32_t(carries);
+      total[j] = sum;
+      kept[j] = pick(take, w, kept[j]);
+      distance[j] = pick(take, row.distance[j], distance[j]);
+      store3(wi, j, pick(take, load3(row.wi, j), load3(wi, j)));
+      store3(radiance, j, pick(take, r, load3(radiance, j)));
+    }
+  }
+};
+
 // Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
 // the searches of the light's triangle table run in lockstep (sample_cdf's steps, one at a time
 // for every pixel: no branch to mispredict, and the pixels' loads overlap).
@@ -147,31 +185,25 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
     parallel_for_tiles(g.width, g.height, LightRow::kWidth, [&](int x0, int y0, int x1, int y1) {
       ShadowBatch& b = batches.local();
       LightRow row;
-      ShadowSelection selections[LightRow::kWidth];
+      RowSelection selection;
       const int width = x1 - x0;
       for (int y = y0; y < y1; ++y) {
         const size_t i0 = view.index(x0, y);
-        auto push = [&](int j) {
-          return [&b, &tracer, pixels, i = uint32_t(i0) + uint32_t(j)](
-                     const Ray& ray, vec3 radiance) { b.add(ray, radiance, i, tracer, pixels); };
-        };
         // The row's samples of one light, from `row`, to their selections or the batch.
         auto hand_off = [&] {
+          if (select) {
+            selection.offer(row, width);
+            return;
+          }
           for (int j = 0; j < width; ++j) {
             const vec3 radiance = row.radiance[j];
-            if (!(max_component(radiance) > 0.0f)) continue;
-            const Ray ray = shadow_ray(row.origin[j], row.wi[j], row.distance[j]);
-            if (select)
-              selections[j](ray, radiance);
-            else
-              push(j)(ray, radiance);
+            if (max_component(radiance) > 0.0f)
+              b.add(shadow_ray(row.origin[j], row.wi[j], row.distance[j]), radiance,
+                    uint32_t(i0) + uint32_t(j), tracer, pixels);
           }
         };
-        for (int j = 0; j < width; ++j) {
-          pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
-          if (select)
-            selections[j] = ShadowSelection::for_pixel(uint32_t(i0) + uint32_t(j), settings);
-        }
+        for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
+        if (select) selection.start(uint32_t(i0), width, settings);
         for (const PunctualLane& light : punctual) {
           shade_punctual_row(view, i0, width, eye, light, row);
           hand_off();
@@ -187,11 +219,14 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
             hand_off();
           }
         }
+        // Each pixel's kept sample, from the origin every lane shaded it from.
         if (select)
-          for (int j = 0; j < width; ++j) {
-            auto to_batch = push(j);
-            selections[j].finish(to_batch);
-          }
+          for (int j = 0; j < width; ++j)
+            if (selection.kept[j] > 0.0f)
+              b.add(shadow_ray(row.origin[j], selection.wi[j], selection.distance[j]),
+                    ShadowSelection::weighted(selection.radiance[j], selection.kept[j],
+                                              selection.total[j]),
+                    uint32_t(i0) + uint32_t(j), tracer, pixels);
       }
       b.flush(tracer, pixels);
     });

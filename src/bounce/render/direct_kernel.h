@@ -239,33 +239,47 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
 struct ShadowSelection {
   Ray ray;
   vec3 radiance{0.0f};
-  float kept = 0.0f;   // the kept sample's luminance
-  float total = 0.0f;  // the sum over all samples offered
-  Pcg32 rng;
+  float kept = 0.0f;    // the kept sample's luminance
+  float total = 0.0f;   // the sum over all samples offered
+  uint32_t seed = 0;    // the pixel's (for_pixel)
+  uint32_t offers = 0;  // samples offered so far that carry light
 
   ShadowSelection() = default;  // a placeholder until for_pixel
-  BOUNCE_HD explicit ShadowSelection(uint32_t seed) : rng(seed, 0x2545F491u) {}
+  BOUNCE_HD explicit ShadowSelection(uint32_t pixel_seed) : seed(pixel_seed) {}
   // Pixel i's selection in the frame `settings` names.
   BOUNCE_HD static ShadowSelection for_pixel(uint32_t i, const DirectSettings& settings) {
     return ShadowSelection(hash_u32(i ^ hash_u32(settings.frame * 0x9E3779B9u + settings.seed)));
+  }
+  // The uniform number that decides a pixel's offer number `offer`: counter-based, so direct.cpp's
+  // row loop draws it for a whole row at once and gets what this kernel draws offer by offer.
+  BOUNCE_HD static float u(uint32_t pixel_seed, uint32_t offer) {
+    return bits_to_unit_float(hash_u32(pixel_seed ^ hash_u32(offer * 0x9E3779B9u + 0x2545F491u)));
+  }
+  // Whether an offer of luminance w, the running sum now `new_total`, replaces the kept sample:
+  // the first is always kept (also where u * total rounds up to w), each later one with
+  // probability w / total: streaming reservoir sampling.
+  BOUNCE_HD static bool takes(float u_offer, float new_total, float w, float kept_so_far) {
+    return (u_offer * new_total < w) | (kept_so_far == 0.0f);
   }
   // Offers one sample (what direct_pixel hands its `shadow`).
   BOUNCE_HD void operator()(const Ray& r, vec3 sample_radiance) {
     const float w = luminance(sample_radiance);
     if (!(w > 0.0f)) return;
     total += w;
-    // The first sample is always kept (u * total < w for u < 1); each later one replaces it with
-    // probability w / total: streaming reservoir sampling.
-    if (rng.next_float() * total < w) {
+    if (takes(u(seed, offers++), total, w, kept)) {
       ray = r;
       radiance = sample_radiance;
       kept = w;
     }
   }
+  // The kept sample's radiance weighted by (sum of luminances) / (its own).
+  BOUNCE_HD static vec3 weighted(vec3 kept_radiance, float kept_luminance, float sum) {
+    return kept_luminance == sum ? kept_radiance : kept_radiance * (sum / kept_luminance);
+  }
   // Hands the kept sample, weighted, to shadow(ray, radiance); nothing when no sample came.
   template <typename Shadow>
   BOUNCE_HD void finish(Shadow& shadow) const {
-    if (kept > 0.0f) shadow(ray, kept == total ? radiance : radiance * (total / kept));
+    if (kept > 0.0f) shadow(ray, weighted(radiance, kept, total));
   }
 };
 
