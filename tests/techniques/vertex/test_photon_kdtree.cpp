@@ -45,7 +45,7 @@ void expect_tree_equals_brute_force(bool slice, bool direction_test) {
         const vec3 x(rng.next_float(), q % 3 == 0 ? 0.0f : rng.next_float(), rng.next_float());
         const vec3 n(0, 1, 0);
         const float radius = 0.02f + 0.3f * rng.next_float();
-        const EstimateFilter filter{view, x, n, slice, direction_test, 0.01f};
+        const EstimateFilter filter{x, n, slice, direction_test, 0.01f};
         KnnHeap fast, exact;
         fast.capacity = exact.capacity = k;
         knn_search(view, x, radius, filter, fast);
@@ -74,6 +74,55 @@ TEST(PhotonKdTree, NearestEqualBruteForceWithSphereSlice) {
 }
 TEST(PhotonKdTree, NearestEqualBruteForceWithSliceAndSideTest) {
   expect_tree_equals_brute_force(true, true);
+}
+
+// The photons of the lights that stay put and of those that move live in two trees searched as
+// one (PhotonMapView): the k nearest of both, with the slice and side test, are those of a single
+// tree over all the photons, and so is the irradiance they give. A few photons in the second
+// tree (the flashlight's share), half of them, or none.
+TEST(PhotonKdTree, TwoTreesSearchAsOne) {
+  const MapPhotons all = random_photons(12000, 11);
+  for (const size_t every : {size_t(25), size_t(2), size_t(0)}) {
+    SCOPED_TRACE(every);
+    MapPhotons still, moving;
+    for (size_t i = 0; i < all.size(); ++i) {
+      MapPhotons& to = every > 0 && i % every == 0 ? moving : still;
+      to.position.push_back(all.position[i]);
+      to.flux.push_back(all.flux[i]);
+      to.normal.push_back(all.normal[i]);
+    }
+    PhotonKdTree one, first, second;
+    one.build(all, 8);
+    first.build(still, 8);
+    second.build(moving, 8);
+    const PhotonMapView map(first.view(), second.view());
+    ASSERT_EQ(map.count(), all.size());
+    Pcg32 rng(5);
+    for (const bool exact : {false, true})
+      for (int q = 0; q < 300; ++q) {
+        const vec3 x(rng.next_float(), q % 3 == 0 ? 0.0f : rng.next_float(), rng.next_float());
+        const vec3 n(0, 1, 0);
+        EstimateSettings s;
+        s.k = q % 2 ? 50 : 7;
+        s.max_radius = 0.05f + 0.3f * rng.next_float();
+        s.sphere_slice = q % 4 < 2;
+        s.slice_half = 0.01f;
+        s.exact = exact;
+        KnnHeap a, b;
+        find_photons(map, x, n, s, a);
+        find_photons(PhotonMapView(one.view()), x, n, s, b);
+        // Indices differ (each tree has its own order): compare distances and positions.
+        std::vector<std::pair<float, float>> pa, pb;
+        for (int i = 0; i < a.size; ++i) pa.emplace_back(a.dist2[i], map.position(a.index[i]).x);
+        for (int i = 0; i < b.size; ++i)
+          pb.emplace_back(b.dist2[i], one.view().position[b.index[i]].x);
+        std::sort(pa.begin(), pa.end());
+        std::sort(pb.begin(), pb.end());
+        ASSERT_EQ(pa, pb) << "query " << q << (exact ? " exact" : "");
+        const vec3 ea = irradiance_from(map, a, s), eb = irradiance_from(one.view(), b, s);
+        EXPECT_NEAR(ea.x, eb.x, 1e-5f * (1.0f + eb.x)) << "query " << q;
+      }
+  }
 }
 
 // The heap holds the k closest even when far photons arrive first.

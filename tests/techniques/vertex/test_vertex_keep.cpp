@@ -2,6 +2,9 @@
 // and the estimates it made, and the frames are the ones it would have computed again.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "bounce/interactive/flashlight.h"
 #include "bounce/scene/load.h"
 #include "vertex_test_util.h"
 
@@ -58,6 +61,48 @@ TEST(VertexKeep, ADimmedLightMakesNewPhotonsAndANewTree) {
   // The tree holds the dimmed slot beside the old ones: not the map it kept.
   run.frame(scene);
   EXPECT_FALSE(run.technique->kept_tree());
+}
+
+// A light that moves every frame (a flashlight swept across the box) keeps its photons apart:
+// once the ring holds only slots traced since it began to move, the tree of the other light's
+// photons stands while the moving light's is rebuilt, and the frames are those of one tree
+// rebuilt over all the photons each frame (equal to rounding: the sums run in another order).
+TEST(VertexKeep, AMovingLightLeavesTheOtherLightsTreeStanding) {
+  Scene scene = make_cornell();
+  FlashlightSettings flashlight;
+  flashlight.intensity = vec3(2.0f);
+  const size_t index = add_flashlight(scene, scene.camera, flashlight);
+  VertexRun keep(scene, kSmall, 24), rebuild(scene, with(kSmall, "keep_unchanged", "false"), 24);
+  for (VertexRun* run : {&keep, &rebuild}) run->settings.accumulate = false;
+  for (int f = 0; f < 8; ++f) {
+    SCOPED_TRACE(f);
+    Camera held = scene.camera;
+    held.look_at += vec3(0.04f * float(f), 0.0f, 0.0f);
+    if (place_flashlight(scene, index, held, flashlight)) {
+      SceneChange moved;
+      moved.lights = true;
+      keep.renderer->scene_changed(moved);
+      rebuild.renderer->scene_changed(moved);
+    }
+    const Image a = keep.frame(scene).indirect;
+    const Image b = rebuild.frame(scene).indirect;
+    ASSERT_EQ(a.pixel_count(), b.pixel_count());
+    float worst = 0.0f, brightest = 0.0f;
+    for (size_t i = 0; i < a.pixel_count(); ++i) {
+      worst = std::max(worst, max_component(glm::abs(a.pixels()[i] - b.pixels()[i])));
+      brightest = std::max(brightest, max_component(b.pixels()[i]));
+    }
+    ASSERT_GT(brightest, 0.0f);
+    EXPECT_LE(worst, 1e-5f * brightest);
+    EXPECT_FALSE(rebuild.technique->kept_tree());
+    EXPECT_EQ(rebuild.technique->moving_ring().photon_count(), 0u);
+    // Frame 1 moves the light; frame 3 still replaces frame 0's slot, which held its photons.
+    EXPECT_EQ(keep.technique->kept_tree(), f >= 4);
+    if (f >= 1) {
+      EXPECT_FALSE(keep.technique->kept_moving_tree());
+      EXPECT_GT(keep.technique->moving_ring().photon_count(), 0u);
+    }
+  }
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ double mean_indirect(const Params& extra, uint64_t* stored = nullptr) {
   run.settings.accumulate = true;
   const Frame* f = nullptr;
   for (int k = 0; k < 4; ++k) f = &run.frame(scene);
-  if (stored) *stored = run.technique->tree().size();
+  if (stored) *stored = run.technique->photon_count();
   double sum = 0.0;
   for (size_t i = 0; i < f->indirect.pixel_count(); ++i) {
     const vec3 p = f->indirect.pixels()[i];

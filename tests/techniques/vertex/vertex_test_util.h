@@ -32,7 +32,7 @@ struct VertexRun {
   // Irradiance the photon map gives at x on the side n faces (the last frame's map and settings).
   vec3 irradiance(vec3 x, vec3 n) const {
     KnnHeap heap;
-    return photon_irradiance(technique->tree().view(), x, n, technique->estimate_settings(), heap);
+    return photon_irradiance(technique->photon_map(), x, n, technique->estimate_settings(), heap);
   }
 };
 

@@ -129,26 +129,30 @@ BOUNCE_HD inline float knn_radius2(const KnnHeap& heap, float max_radius2) {
   return heap.full() ? heap.top() : max_radius2;
 }
 
-// Offers photon i at squared distance d2 to the heap, if it is closer than the radius and the
-// filter accepts it.
+// Offers photon i of tree t at squared distance d2 to the heap as index base + i, if it is closer
+// than the radius and the filter accepts it: accept(t, i), or accept(base + i).
 template <typename Filter>
-BOUNCE_HD inline void knn_offer(const PhotonKdTreeView& t, vec3 x, uint32_t i, float max_radius2,
-                                const Filter& accept, KnnHeap& heap) {
+BOUNCE_HD inline void knn_offer(const PhotonKdTreeView& t, uint32_t base, vec3 x, uint32_t i,
+                                float max_radius2, const Filter& accept, KnnHeap& heap) {
   const vec3 d = t.position[i] - x;
   const float d2 = glm::dot(d, d);
   if (d2 >= knn_radius2(heap, max_radius2)) return;
-  if (!accept(i)) return;
-  heap.push(d2, i);
+  // A filter may read the photon from its own tree (no search of the map for it) or take the
+  // map's index.
+  if constexpr (std::is_invocable_v<const Filter&, const PhotonKdTreeView&, uint32_t>) {
+    if (!accept(t, i)) return;
+  } else {
+    if (!accept(base + i)) return;
+  }
+  heap.push(d2, base + i);
 }
 
-// The k = heap.capacity nearest photons to x within max_radius that `accept(index)` accepts, into
-// `heap` (emptied first).
+// Goes on with a search whose heap holds what earlier trees gave: the k nearest of all of them
+// stay (their indices offset by each tree's `base`), and the radius found so far prunes this tree.
 template <typename Filter>
-BOUNCE_HD inline void knn_search(const PhotonKdTreeView& t, vec3 x, float max_radius,
-                                 const Filter& accept, KnnHeap& heap) {
-  heap.size = 0;
+BOUNCE_HD inline void knn_search_more(const PhotonKdTreeView& t, uint32_t base, vec3 x,
+                                      float max_radius2, const Filter& accept, KnnHeap& heap) {
   if (t.count == 0 || heap.capacity <= 0) return;
-  const float max_radius2 = max_radius * max_radius;
   struct Range {
     uint32_t from, to;
     float plane_d2;  // squared distance from x to the splitting plane that separates it
@@ -160,11 +164,11 @@ BOUNCE_HD inline void knn_search(const PhotonKdTreeView& t, vec3 x, float max_ra
     const Range r = stack[--top];
     if (r.plane_d2 >= knn_radius2(heap, max_radius2)) continue;
     if (kd_is_leaf(r.from, r.to, t.leaf_size)) {
-      for (uint32_t i = r.from; i < r.to; ++i) knn_offer(t, x, i, max_radius2, accept, heap);
+      for (uint32_t i = r.from; i < r.to; ++i) knn_offer(t, base, x, i, max_radius2, accept, heap);
       continue;
     }
     const uint32_t mid = kd_middle(r.from, r.to);
-    knn_offer(t, x, mid, max_radius2, accept, heap);
+    knn_offer(t, base, x, mid, max_radius2, accept, heap);
     const int axis = t.axis[mid];
     const float delta = x[axis] - t.position[mid][axis];
     const Range left{r.from, mid, 0.0f}, right{mid + 1, r.to, 0.0f};
@@ -177,14 +181,65 @@ BOUNCE_HD inline void knn_search(const PhotonKdTreeView& t, vec3 x, float max_ra
   }
 }
 
+// The k = heap.capacity nearest photons to x within max_radius that `accept(index)` accepts, into
+// `heap` (emptied first).
+template <typename Filter>
+BOUNCE_HD inline void knn_search(const PhotonKdTreeView& t, vec3 x, float max_radius,
+                                 const Filter& accept, KnnHeap& heap) {
+  heap.size = 0;
+  knn_search_more(t, 0, x, max_radius * max_radius, accept, heap);
+}
+
+// Every photon of t offered as base + i: the brute-force form of knn_search_more.
+template <typename Filter>
+BOUNCE_HD inline void knn_brute_force_more(const PhotonKdTreeView& t, uint32_t base, vec3 x,
+                                           float max_radius2, const Filter& accept, KnnHeap& heap) {
+  if (heap.capacity <= 0) return;
+  for (uint32_t i = 0; i < t.count; ++i) knn_offer(t, base, x, i, max_radius2, accept, heap);
+}
+
 // The same answer by looking at every photon: the seed's Exact_photon_map, the check of the tree.
 template <typename Filter>
 BOUNCE_HD inline void knn_brute_force(const PhotonKdTreeView& t, vec3 x, float max_radius,
                                       const Filter& accept, KnnHeap& heap) {
   heap.size = 0;
-  if (heap.capacity <= 0) return;
+  knn_brute_force_more(t, 0, x, max_radius * max_radius, accept, heap);
+}
+
+// The photon map as two trees searched as one: the photons of lights that stay put (rebuilt only
+// when those photons change) and those of lights that move (the flashlight: rebuilt each frame).
+// Index i names the first tree's photon i below first.count, else the second's i - first.count.
+struct PhotonMapView {
+  PhotonKdTreeView first, second;
+
+  PhotonMapView() = default;
+  BOUNCE_HD PhotonMapView(const PhotonKdTreeView& a, const PhotonKdTreeView& b = {})
+      : first(a), second(b) {}
+  BOUNCE_HD uint32_t count() const { return first.count + second.count; }
+  BOUNCE_HD vec3 position(uint32_t i) const {
+    return i < first.count ? first.position[i] : second.position[i - first.count];
+  }
+  BOUNCE_HD vec3 flux(uint32_t i) const {
+    return i < first.count ? first.flux[i] : second.flux[i - first.count];
+  }
+  BOUNCE_HD vec3 normal(uint32_t i) const {
+    return i < first.count ? first.normal[i] : second.normal[i - first.count];
+  }
+};
+
+// The k nearest accepted photons of both trees (exact: by brute force), into `heap`.
+template <typename Filter>
+BOUNCE_HD inline void knn_search(const PhotonMapView& map, vec3 x, float max_radius, bool exact,
+                                 const Filter& accept, KnnHeap& heap) {
+  heap.size = 0;
   const float max_radius2 = max_radius * max_radius;
-  for (uint32_t i = 0; i < t.count; ++i) knn_offer(t, x, i, max_radius2, accept, heap);
+  if (exact) {
+    knn_brute_force_more(map.first, 0, x, max_radius2, accept, heap);
+    knn_brute_force_more(map.second, map.first.count, x, max_radius2, accept, heap);
+  } else {
+    knn_search_more(map.first, 0, x, max_radius2, accept, heap);
+    knn_search_more(map.second, map.first.count, x, max_radius2, accept, heap);
+  }
 }
 
 }  // namespace bounce

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bounce/core/parallel.h"
 #include "bounce/render/memory_estimate.h"
@@ -122,9 +123,22 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   if (!started_ || c.change.everything || c.change.parameters ||
       ring_.frames() != uint32_t(s.accumulation_frames)) {
     ring_.reset(uint32_t(s.accumulation_frames));
+    moving_ring_.reset(uint32_t(s.accumulation_frames));
+    moving_.clear();
     frame_ = 0;
   }
   started_ = true;
+  // A light that moved (or changed) since the ring restarted keeps its photons apart from then
+  // on (keep_unchanged): the tree of the others then stands while it alone moves, as the
+  // flashlight does with the camera. The two trees are searched as one, so where a photon is
+  // kept changes no estimate, only what has to be rebuilt. (A light added or removed starts the
+  // flags again: they follow the lights' indices.)
+  if (moving_.size() != c.scene.lights.size() || last_lights_.size() != c.scene.lights.size())
+    moving_.assign(c.scene.lights.size(), 0);
+  else if (s.keep_unchanged)
+    for (size_t l = 0; l < c.scene.lights.size(); ++l)
+      if (!(c.scene.lights[l] == last_lights_[l])) moving_[l] = 1;
+  last_lights_ = c.scene.lights;
   // At rest with accumulation, each frame's photons are a fresh set (the frames the pipeline
   // averages are then independent); otherwise the frame-coherent sets.
   rest_pass_ = c.continue_accumulation() ? rest_pass_ + 1 : 0;
@@ -147,14 +161,21 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     ps.seed = uint32_t(s.seed);
     ps.every_triangle = !s.bsp_tree;
     ps.variant = rest_pass_;
+    ps.moving = moving_;
     // With the ring full, this frame's slot replaces photons the tree holds.
     may_keep = may_keep && ring_.filled() == ring_.frames();
-    if (may_keep) replaced_ = ring_.slot(frame_ % ring_.frames());
+    if (may_keep) {
+      replaced_ = ring_.slot(frame_ % ring_.frames());
+      moving_replaced_ = moving_ring_.slot(frame_ % moving_ring_.frames());
+    }
     MapPhotons& slot = ring_.begin_frame(frame_);
-    const VertexPhotonStats stats = tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot);
+    MapPhotons& moving_slot = moving_ring_.begin_frame(frame_);
+    const VertexPhotonStats stats =
+        tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot, &moving_slot);
     // Frame-coherent photons retrace the same paths while nothing moved: then the ring holds
     // what it held, and the tree built on it stands.
     kept_tree_ = may_keep && slot == replaced_;
+    kept_moving_tree_ = may_keep && moving_slot == moving_replaced_;
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
@@ -166,6 +187,10 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
       ring_.gather(map_);
       tree_.build(map_, uint32_t(s.stop_recursion_size));
     }
+    if (!kept_moving_tree_) {
+      moving_ring_.gather(moving_map_);
+      moving_tree_.build(moving_map_, uint32_t(s.stop_recursion_size));
+    }
   }
 
   const EstimateSettings last = estimate_;
@@ -173,13 +198,14 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   e.k = s.max_search_count;
   e.max_radius =
       s.max_search_radius > 0.0f ? s.max_search_radius : s.max_search_radius_rel * diagonal_;
-  if (s.use_radius_heuristic && tree_.size() > 0) {
+  if (s.use_radius_heuristic && photon_count() > 0) {
     // Eq 3.7 with r_n the radius of the sphere around all photons.
-    vec3 lo = map_.position[0], hi = lo;
-    for (const vec3& p : map_.position) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const MapPhotons* m : {&map_, &moving_map_})
+      for (const vec3& p : m->position) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const float rn = 0.5f * glm::length(hi - lo);
     e.max_radius =
-        std::sqrt(float(e.k) * rn * rn / (s.radius_heuristic_alpha * float(tree_.size())));
+        std::sqrt(float(e.k) * rn * rn / (s.radius_heuristic_alpha * float(photon_count())));
   }
   e.sphere_slice = s.use_sphere_slice;
   e.slice_half = s.slice_thickness_rel * diagonal_;
@@ -188,8 +214,8 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   e.flux_scale = ring_.filled() > 0 ? 1.0f / float(ring_.filled()) : 0.0f;
   e.final_gather_rays = s.final_gathering ? s.final_gathering_samples : 0;
   e.final_gather_seed = hash_u32(uint32_t(s.seed) ^ rest_pass_);
-  // Estimates made on the kept tree with the same settings stand (indirect reads known_).
-  if (!(kept_tree_ && e == last)) known_.clear();
+  // Estimates made on the kept trees with the same settings stand (indirect reads known_).
+  if (!(kept_tree_ && kept_moving_tree_ && e == last)) known_.clear();
 }
 
 void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
@@ -225,7 +251,7 @@ void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
     todo_.clear();
     for (size_t k = 0; k < slots; ++k)
       if (needed_[k] && !known_[k]) todo_.push_back(uint32_t(k));
-    const VertexEstimateView ev{mesh,      tree_.view(),       c.scene_view, c.tracer.view(),
+    const VertexEstimateView ev{mesh,      photon_map(),       c.scene_view, c.tracer.view(),
                                 estimate_, irradiance_.data(), per_key};
     parallel_for(
         todo_.size(), [&](size_t j) { estimate_slot(ev, todo_[j]); }, 16);

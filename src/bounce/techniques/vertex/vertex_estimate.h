@@ -35,27 +35,24 @@ static_assert(std::is_trivially_copyable_v<EstimateSettings>);
 // Whether photon i may enter the estimate at x with unit normal n (the side the light is wanted
 // on): within the slice around the tangent plane, and arrived on n's side.
 struct EstimateFilter {
-  PhotonKdTreeView tree;
   vec3 x, n;
   bool sphere_slice, direction_test;
   float slice_half;
 
-  BOUNCE_HD bool operator()(uint32_t i) const {
-    if (sphere_slice && glm::abs(glm::dot(tree.position[i] - x, n)) > slice_half) return false;
-    if (direction_test && glm::dot(tree.normal[i], n) <= 0.0f) return false;
+  // Photon i of tree t (either of the map's).
+  BOUNCE_HD bool operator()(const PhotonKdTreeView& t, uint32_t i) const {
+    if (sphere_slice && glm::abs(glm::dot(t.position[i] - x, n)) > slice_half) return false;
+    if (direction_test && glm::dot(t.normal[i], n) <= 0.0f) return false;
     return true;
   }
 };
 
 // The k nearest accepted photons at x (heap.capacity is set from the settings).
-BOUNCE_HD inline void find_photons(const PhotonKdTreeView& tree, vec3 x, vec3 n,
+BOUNCE_HD inline void find_photons(const PhotonMapView& tree, vec3 x, vec3 n,
                                    const EstimateSettings& s, KnnHeap& heap) {
-  const EstimateFilter filter{tree, x, n, s.sphere_slice, s.direction_test, s.slice_half};
+  const EstimateFilter filter{x, n, s.sphere_slice, s.direction_test, s.slice_half};
   heap.capacity = s.k < kMaxSearchCount ? s.k : kMaxSearchCount;
-  if (s.exact)
-    knn_brute_force(tree, x, s.max_radius, filter, heap);
-  else
-    knn_search(tree, x, s.max_radius, filter, heap);
+  knn_search(tree, x, s.max_radius, s.exact, filter, heap);
 }
 
 // Irradiance (W/m^2) from the photons in the heap. With all k found, the disc reaches the
@@ -63,14 +60,14 @@ BOUNCE_HD inline void find_photons(const PhotonKdTreeView& tree, vec3 x, vec3 n,
 // equal flux spread uniformly, E[(k - 1) / (pi r_k^2)] is exactly their density (r_k^2 is Gamma
 // distributed), where the seed's k / (pi r_k^2) is k / (k - 1) too bright. With fewer than k
 // found, every photon in the disc of the maximum radius counts.
-BOUNCE_HD inline vec3 irradiance_from(const PhotonKdTreeView& tree, const KnnHeap& heap,
+BOUNCE_HD inline vec3 irradiance_from(const PhotonMapView& tree, const KnnHeap& heap,
                                       const EstimateSettings& s) {
   vec3 sum(0.0f);
-  for (int j = 0; j < heap.size; ++j) sum += tree.flux[heap.index[j]];
+  for (int j = 0; j < heap.size; ++j) sum += tree.flux(heap.index[j]);
   float r2 = s.max_radius * s.max_radius;
   if (heap.full() && heap.size > 1) {
     r2 = heap.top();
-    sum -= tree.flux[heap.index[0]];  // the heap's top is the farthest
+    sum -= tree.flux(heap.index[0]);  // the heap's top is the farthest
   } else if (heap.full()) {
     r2 = heap.top();  // k = 1: the seed's estimate
   }
@@ -78,7 +75,7 @@ BOUNCE_HD inline vec3 irradiance_from(const PhotonKdTreeView& tree, const KnnHea
   return sum * (s.flux_scale / (kPi * r2));
 }
 
-BOUNCE_HD inline vec3 photon_irradiance(const PhotonKdTreeView& tree, vec3 x, vec3 n,
+BOUNCE_HD inline vec3 photon_irradiance(const PhotonMapView& tree, vec3 x, vec3 n,
                                         const EstimateSettings& s, KnnHeap& heap) {
   find_photons(tree, x, n, s, heap);
   return irradiance_from(tree, heap, s);
@@ -88,7 +85,7 @@ BOUNCE_HD inline vec3 photon_irradiance(const PhotonKdTreeView& tree, vec3 x, ve
 // 3.10), each ending on a surface whose reflected radiance the photon map estimates there. The map
 // must then hold the photons' first hits too (the light the gathered surfaces reflect).
 BOUNCE_HD inline vec3 final_gather_irradiance(const SceneView& scene, const TraceView& trace,
-                                              const PhotonKdTreeView& tree, vec3 x, vec3 n,
+                                              const PhotonMapView& tree, vec3 x, vec3 n,
                                               const EstimateSettings& s, uint32_t point,
                                               KnnHeap& heap) {
   const int rays = s.final_gather_rays;

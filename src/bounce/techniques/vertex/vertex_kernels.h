@@ -65,7 +65,7 @@ BOUNCE_HD inline void locate_pixel(const VertexPixelView& v, size_t i) {
 
 struct VertexEstimateView {
   RefinedMeshView mesh;
-  PhotonKdTreeView tree;
+  PhotonMapView tree;  // the lights that stay put, then those that move
   SceneView scene;
   TraceView trace;
   EstimateSettings settings;

@@ -63,9 +63,11 @@ const std::vector<vec3>& VertexPhotonTracer::point_set(int kind, uint32_t n, flo
 
 VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView& view,
                                             const Tracer& tracer,
-                                            const VertexPhotonSettings& settings, MapPhotons& out) {
+                                            const VertexPhotonSettings& settings, MapPhotons& out,
+                                            MapPhotons* moving_out) {
   VertexPhotonStats stats;
   out.clear();
+  if (moving_out) moving_out->clear();
   const PhotonEmitters emitters = PhotonEmitters::from(scene);
   if (emitters.empty() || settings.photons == 0) return stats;
   const uint32_t frames = std::max(settings.frames, 1u);
@@ -142,35 +144,45 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
   const size_t paths = starts_.size();
   const size_t chunk_count = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
   if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
+  if (moving_chunks_.size() < chunk_count) moving_chunks_.resize(chunk_count);
+  const auto moves = [&](uint32_t emitter) {
+    return moving_out && emitter < settings.moving.size() && settings.moving[emitter] != 0;
+  };
   std::vector<uint64_t> rays(chunk_count, 0);
   parallel_for(
       chunk_count,
       [&](size_t c) {
-        MapPhotons& chunk = chunks_[c];
-        chunk.clear();
-        auto deposit = [&](vec3 position, vec3 flux, vec3 normal) {
-          chunk.position.push_back(position);
-          chunk.flux.push_back(flux);
-          chunk.normal.push_back(normal);
-        };
+        chunks_[c].clear();
+        moving_chunks_[c].clear();
         const size_t end = std::min(paths, (c + 1) * kPathsPerChunk);
         for (size_t i = c * kPathsPerChunk; i < end; ++i) {
+          MapPhotons& chunk = moves(starts_[i].emitter) ? moving_chunks_[c] : chunks_[c];
+          auto deposit = [&](vec3 position, vec3 flux, vec3 normal) {
+            chunk.position.push_back(position);
+            chunk.flux.push_back(flux);
+            chunk.normal.push_back(normal);
+          };
           const EmittedPhoton e = emit_vertex_photon(view, emitter_view, starts_[i]);
           rays[c] += trace_vertex_path(v, e, path_ids_[i], deposit);
         }
       },
       1);
-  size_t total = 0;
-  for (size_t c = 0; c < chunk_count; ++c) total += chunks_[c].size();
-  out.position.reserve(total);
-  out.flux.reserve(total);
-  out.normal.reserve(total);
-  for (size_t c = 0; c < chunk_count; ++c) {
-    const MapPhotons& chunk = chunks_[c];
-    out.position.insert(out.position.end(), chunk.position.begin(), chunk.position.end());
-    out.flux.insert(out.flux.end(), chunk.flux.begin(), chunk.flux.end());
-    out.normal.insert(out.normal.end(), chunk.normal.begin(), chunk.normal.end());
-  }
+  const auto join = [&](const std::vector<MapPhotons>& chunks, MapPhotons& to) {
+    size_t total = 0;
+    for (size_t c = 0; c < chunk_count; ++c) total += chunks[c].size();
+    to.position.reserve(to.size() + total);
+    to.flux.reserve(to.size() + total);
+    to.normal.reserve(to.size() + total);
+    for (size_t c = 0; c < chunk_count; ++c) {
+      const MapPhotons& chunk = chunks[c];
+      to.position.insert(to.position.end(), chunk.position.begin(), chunk.position.end());
+      to.flux.insert(to.flux.end(), chunk.flux.begin(), chunk.flux.end());
+      to.normal.insert(to.normal.end(), chunk.normal.begin(), chunk.normal.end());
+    }
+    return total;
+  };
+  size_t total = join(chunks_, out);
+  if (moving_out) total += join(moving_chunks_, *moving_out);
   stats.paths = paths;
   stats.stored = total;
   for (uint64_t r : rays) stats.rays += r;

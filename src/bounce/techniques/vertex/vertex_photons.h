@@ -39,6 +39,9 @@ struct VertexPhotonSettings {
   // 0: the frame-coherent sets; k > 0: the sets turned and shifted by a hash of k (a fresh,
   // independent photon set, for frames at rest).
   uint32_t variant = 0;
+  // Per emitter (LightPicker entry): 1 for a light that moves, whose photons trace() keeps apart
+  // (the flashlight). Empty, or missing entries: the light stays put.
+  std::vector<uint8_t> moving;
 };
 
 struct VertexPhotonStats {
@@ -49,8 +52,11 @@ struct VertexPhotonStats {
 
 class VertexPhotonTracer {
  public:
+  // This frame's photons into `out`; with `moving_out`, those of the emitters settings.moving
+  // flags go there instead (each in path order, as out alone would hold them).
   VertexPhotonStats trace(const Scene& scene, const SceneView& view, const Tracer& tracer,
-                          const VertexPhotonSettings& settings, MapPhotons& out);
+                          const VertexPhotonSettings& settings, MapPhotons& out,
+                          MapPhotons* moving_out = nullptr);
   // Paths each emitter (LightPicker entry) leaves per frame for `photons` in all.
   static std::vector<uint32_t> paths_per_emitter(const std::vector<float>& pmf, uint32_t photons);
 
@@ -62,7 +68,7 @@ class VertexPhotonTracer {
   std::tuple<uint32_t, bool, uint32_t> bounce_key_{0, false, 0};
   std::vector<VertexPathStart> starts_;
   std::vector<uint32_t> path_ids_;
-  std::vector<MapPhotons> chunks_;
+  std::vector<MapPhotons> chunks_, moving_chunks_;
 };
 
 }  // namespace bounce
