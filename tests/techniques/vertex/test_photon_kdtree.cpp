@@ -125,6 +125,53 @@ TEST(PhotonKdTree, TwoTreesSearchAsOne) {
   }
 }
 
+// A filter that tests boxes (the sphere slice) lets the search skip nodes off the tangent plane:
+// the same k nearest, from fewer photons looked at (here 17% fewer). Without the box test every
+// photon in the radius is offered to the slice one by one.
+struct CountingFilter {
+  EstimateFilter inner;
+  mutable int offered = 0;
+  bool operator()(const PhotonKdTreeView& t, uint32_t i) const {
+    ++offered;
+    return inner(t, i);
+  }
+};
+struct CountingBoxFilter : CountingFilter {
+  bool may_accept_box(vec3 lo, vec3 hi) const { return inner.may_accept_box(lo, hi); }
+};
+
+TEST(PhotonKdTree, TheSliceSkipsNodesOffThePlane) {
+  // A floor with a tenth of the photons, and the rest in the room above it (as on a level: most
+  // photons near a point lie on other surfaces).
+  MapPhotons photons;
+  Pcg32 place(3);
+  for (int i = 0; i < 20000; ++i) {
+    const bool floor = i % 10 == 0;
+    photons.position.push_back(vec3(
+        place.next_float(), floor ? 0.0f : 0.1f + 0.9f * place.next_float(), place.next_float()));
+    photons.flux.push_back(vec3(1.0f));
+    photons.normal.push_back(vec3(0, 1, 0));
+  }
+  PhotonKdTree tree;
+  tree.build(photons, 8);
+  Pcg32 rng(17);
+  long plain_offers = 0, box_offers = 0;
+  for (int q = 0; q < 200; ++q) {
+    const vec3 x(rng.next_float(), 0.0f, rng.next_float());  // on the plane y = 0
+    const EstimateFilter inner{x, vec3(0, 1, 0), true, false, 0.01f};
+    CountingFilter plain{inner};
+    CountingBoxFilter boxed{{inner}};
+    KnnHeap a, b;
+    a.capacity = b.capacity = 50;
+    knn_search(tree.view(), x, 0.3f, plain, a);
+    knn_search(tree.view(), x, 0.3f, boxed, b);
+    ASSERT_EQ(sorted(a), sorted(b)) << "query " << q;
+    plain_offers += plain.offered;
+    box_offers += boxed.offered;
+  }
+  EXPECT_LT(box_offers * 10, plain_offers * 9) << box_offers << " against " << plain_offers;
+}
+
 // The heap holds the k closest even when far photons arrive first.
 TEST(PhotonKdTree, HeapKeepsTheClosest) {
   KnnHeap h;

@@ -65,6 +65,8 @@ void PhotonKdTree::build(const MapPhotons& photons, uint32_t leaf_size) {
     }
   }
   Builder{items_.data(), axis_.data(), leaf_size_}.build(0, n, lo, hi);
+  lo_ = lo;
+  hi_ = hi;
   photons_.position.resize(n);
   photons_.flux.resize(n);
   photons_.normal.resize(n);

@@ -43,6 +43,10 @@ struct PhotonKdTreeView {
   const uint8_t* axis = nullptr;  // split axis of the node whose median is at this index
   uint32_t count = 0;
   uint32_t leaf_size = 1;
+  // The box around every photon, when `bounded`: a search clips it per level to each node's
+  // range, for filters that can rule a whole box out (KnnBoxTest).
+  vec3 lo{0.0f}, hi{0.0f};
+  bool bounded = false;
 };
 static_assert(std::is_trivially_copyable_v<PhotonKdTreeView>);
 
@@ -67,9 +71,15 @@ class PhotonKdTree {
   // Builds over `photons` (copied into tree order); leaf_size >= 1.
   void build(const MapPhotons& photons, uint32_t leaf_size);
   PhotonKdTreeView view() const {
-    return {photons_.position.data(),  photons_.flux.data(),
-            photons_.normal.data(),    axis_.data(),
-            uint32_t(photons_.size()), leaf_size_};
+    return {photons_.position.data(),
+            photons_.flux.data(),
+            photons_.normal.data(),
+            axis_.data(),
+            uint32_t(photons_.size()),
+            leaf_size_,
+            lo_,
+            hi_,
+            true};
   }
   const MapPhotons& photons() const { return photons_; }
   size_t size() const { return photons_.size(); }
@@ -79,6 +89,7 @@ class PhotonKdTree {
   std::vector<uint8_t> axis_;
   std::vector<KdBuildItem> items_;
   uint32_t leaf_size_ = 1;
+  vec3 lo_{0.0f}, hi_{0.0f};
 };
 
 // The k nearest photons found so far: a max-heap on squared distance, fixed capacity.
@@ -147,22 +158,38 @@ BOUNCE_HD inline void knn_offer(const PhotonKdTreeView& t, uint32_t base, vec3 x
   heap.push(d2, base + i);
 }
 
+// Whether Filter can rule out a whole box of photons: filter.may_accept_box(lo, hi) is false
+// only when it would reject every photon inside.
+template <typename F, typename = void>
+struct KnnBoxTest : std::false_type {};
+template <typename F>
+struct KnnBoxTest<F, std::void_t<decltype(std::declval<const F&>().may_accept_box(vec3(), vec3()))>>
+    : std::true_type {};
+
 // Goes on with a search whose heap holds what earlier trees gave: the k nearest of all of them
 // stay (their indices offset by each tree's `base`), and the radius found so far prunes this tree.
 template <typename Filter>
 BOUNCE_HD inline void knn_search_more(const PhotonKdTreeView& t, uint32_t base, vec3 x,
                                       float max_radius2, const Filter& accept, KnnHeap& heap) {
   if (t.count == 0 || heap.capacity <= 0) return;
+  // With a filter that tests boxes, each range carries its box (the photons' box clipped at the
+  // medians above it: nth_element leaves none of a range beyond its split values).
+  constexpr bool kBoxes = KnnBoxTest<Filter>::value;
+  const bool boxes = kBoxes && t.bounded;
   struct Range {
     uint32_t from, to;
     float plane_d2;  // squared distance from x to the splitting plane that separates it
+    vec3 lo, hi;
   };
   Range stack[64];
   int top = 0;
-  stack[top++] = {0, t.count, 0.0f};
+  stack[top++] = {0, t.count, 0.0f, t.lo, t.hi};
   while (top > 0) {
     const Range r = stack[--top];
     if (r.plane_d2 >= knn_radius2(heap, max_radius2)) continue;
+    if constexpr (kBoxes) {
+      if (boxes && !accept.may_accept_box(r.lo, r.hi)) continue;
+    }
     if (kd_is_leaf(r.from, r.to, t.leaf_size)) {
       for (uint32_t i = r.from; i < r.to; ++i) knn_offer(t, base, x, i, max_radius2, accept, heap);
       continue;
@@ -170,8 +197,11 @@ BOUNCE_HD inline void knn_search_more(const PhotonKdTreeView& t, uint32_t base, 
     const uint32_t mid = kd_middle(r.from, r.to);
     knn_offer(t, base, x, mid, max_radius2, accept, heap);
     const int axis = t.axis[mid];
-    const float delta = x[axis] - t.position[mid][axis];
-    const Range left{r.from, mid, 0.0f}, right{mid + 1, r.to, 0.0f};
+    const float split = t.position[mid][axis];
+    const float delta = x[axis] - split;
+    Range left{r.from, mid, 0.0f, r.lo, r.hi}, right{mid + 1, r.to, 0.0f, r.lo, r.hi};
+    left.hi[axis] = split;
+    right.lo[axis] = split;
     Range near = delta < 0.0f ? left : right;
     Range far = delta < 0.0f ? right : left;
     far.plane_d2 = delta * delta;

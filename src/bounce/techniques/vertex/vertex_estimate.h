@@ -45,6 +45,17 @@ struct EstimateFilter {
     if (direction_test && glm::dot(t.normal[i], n) <= 0.0f) return false;
     return true;
   }
+  // Whether box [lo, hi] reaches the slice (the search skips a node's photons when it does not:
+  // off the tangent plane they would all be rejected, one by one). Generous by 1e-5 of the
+  // coordinates' size, so that rounding never skips a photon the test above keeps.
+  BOUNCE_HD bool may_accept_box(vec3 lo, vec3 hi) const {
+    if (!sphere_slice) return true;
+    const vec3 c = 0.5f * (lo + hi), a = glm::abs(n);
+    const float d = glm::dot(c - x, n);
+    const float r = glm::dot(0.5f * (hi - lo), a);
+    const float size = glm::dot(glm::abs(c) + glm::abs(x), a) + r;
+    return glm::abs(d) <= slice_half + r + 1e-5f * size;
+  }
 };
 
 // The k nearest accepted photons at x (heap.capacity is set from the settings).
