@@ -29,6 +29,17 @@ struct MapPhotons {
 
   size_t size() const { return position.size(); }
   bool operator==(const MapPhotons&) const = default;
+  // Adds `more`'s photons after these.
+  void append(const MapPhotons& more) {
+    position.insert(position.end(), more.position.begin(), more.position.end());
+    flux.insert(flux.end(), more.flux.begin(), more.flux.end());
+    normal.insert(normal.end(), more.normal.begin(), more.normal.end());
+  }
+  void reserve(size_t n) {
+    position.reserve(n);
+    flux.reserve(n);
+    normal.reserve(n);
+  }
   void clear() {
     position.clear();
     flux.clear();

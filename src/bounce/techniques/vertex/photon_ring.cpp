@@ -23,21 +23,29 @@ MapPhotons& PhotonRing::begin_frame(uint32_t frame) {
 
 void PhotonRing::gather(MapPhotons& out) const {
   out.clear();
-  const size_t n = photon_count();
-  out.position.reserve(n);
-  out.flux.reserve(n);
-  out.normal.reserve(n);
-  for (const MapPhotons& s : slots_) {
-    out.position.insert(out.position.end(), s.position.begin(), s.position.end());
-    out.flux.insert(out.flux.end(), s.flux.begin(), s.flux.end());
-    out.normal.insert(out.normal.end(), s.normal.begin(), s.normal.end());
-  }
+  out.reserve(photon_count());
+  for (const MapPhotons& s : slots_) out.append(s);
 }
 
 size_t PhotonRing::photon_count() const {
   size_t n = 0;
   for (const MapPhotons& s : slots_) n += s.size();
   return n;
+}
+
+MapPhotons& RingedPhotonTree::refill(uint32_t frame, bool compare) {
+  compare_ = compare;
+  if (compare) replaced_ = ring_.slot(frame % ring_.frames());
+  MapPhotons& slot = ring_.begin_frame(frame);
+  slot_ = &slot;
+  return slot;
+}
+
+void RingedPhotonTree::update(uint32_t leaf_size) {
+  kept_ = compare_ && slot_ && *slot_ == replaced_;
+  if (kept_) return;
+  ring_.gather(map_);
+  tree_.build(map_, leaf_size);
 }
 
 }  // namespace bounce

@@ -31,4 +31,30 @@ class PhotonRing {
   uint32_t filled_ = 0;
 };
 
+// A ring with the kd-tree over every photon it holds (photons() in tree order's source), kept
+// while a refill brings back exactly the photons it replaced (keep_unchanged: frame-coherent
+// paths retrace themselves wherever nothing moved).
+class RingedPhotonTree {
+ public:
+  void reset(uint32_t frames) { ring_.reset(frames); }
+  // This frame's slot, emptied for tracing; with `compare`, what it held is kept to compare.
+  MapPhotons& refill(uint32_t frame, bool compare);
+  // Once the slot is traced: the tree stands if the slot holds what it held, else is rebuilt.
+  void update(uint32_t leaf_size);
+
+  const PhotonRing& ring() const { return ring_; }
+  const PhotonKdTree& tree() const { return tree_; }
+  const MapPhotons& photons() const { return map_; }  // the ring's photons, slot by slot
+  bool kept() const { return kept_; }
+
+ private:
+  PhotonRing ring_;
+  MapPhotons map_;
+  PhotonKdTree tree_;
+  MapPhotons replaced_;  // what the refilled slot held (when compared)
+  const MapPhotons* slot_ = nullptr;
+  bool compare_ = false;
+  bool kept_ = false;
+};
+
 }  // namespace bounce

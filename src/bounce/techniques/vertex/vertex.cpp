@@ -121,10 +121,10 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   // The ring restarts when what it holds would be inconsistent: a new scene or parameters.
   // Moved lights and objects do not restart it: their old photons age out (seed §5.3.1).
   if (!started_ || c.change.everything || c.change.parameters ||
-      ring_.frames() != uint32_t(s.accumulation_frames)) {
-    ring_.reset(uint32_t(s.accumulation_frames));
-    moving_ring_.reset(uint32_t(s.accumulation_frames));
-    moving_.clear();
+      ring().frames() != uint32_t(s.accumulation_frames)) {
+    still_.reset(uint32_t(s.accumulation_frames));
+    moving_.reset(uint32_t(s.accumulation_frames));
+    moving_lights_.clear();
     frame_ = 0;
   }
   started_ = true;
@@ -133,11 +133,12 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   // flashlight does with the camera. The two trees are searched as one, so where a photon is
   // kept changes no estimate, only what has to be rebuilt. (A light added or removed starts the
   // flags again: they follow the lights' indices.)
-  if (moving_.size() != c.scene.lights.size() || last_lights_.size() != c.scene.lights.size())
-    moving_.assign(c.scene.lights.size(), 0);
+  if (moving_lights_.size() != c.scene.lights.size() ||
+      last_lights_.size() != c.scene.lights.size())
+    moving_lights_.assign(c.scene.lights.size(), 0);
   else if (s.keep_unchanged)
     for (size_t l = 0; l < c.scene.lights.size(); ++l)
-      if (!(c.scene.lights[l] == last_lights_[l])) moving_[l] = 1;
+      if (!(c.scene.lights[l] == last_lights_[l])) moving_lights_[l] = 1;
   last_lights_ = c.scene.lights;
   // At rest with accumulation, each frame's photons are a fresh set (the frames the pipeline
   // averages are then independent); otherwise the frame-coherent sets.
@@ -161,21 +162,13 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     ps.seed = uint32_t(s.seed);
     ps.every_triangle = !s.bsp_tree;
     ps.variant = rest_pass_;
-    ps.moving = moving_;
+    ps.moving = moving_lights_;
     // With the ring full, this frame's slot replaces photons the tree holds.
-    may_keep = may_keep && ring_.filled() == ring_.frames();
-    if (may_keep) {
-      replaced_ = ring_.slot(frame_ % ring_.frames());
-      moving_replaced_ = moving_ring_.slot(frame_ % moving_ring_.frames());
-    }
-    MapPhotons& slot = ring_.begin_frame(frame_);
-    MapPhotons& moving_slot = moving_ring_.begin_frame(frame_);
+    may_keep = may_keep && ring().filled() == ring().frames();
+    MapPhotons& slot = still_.refill(frame_, may_keep);
+    MapPhotons& moving_slot = moving_.refill(frame_, may_keep);
     const VertexPhotonStats stats =
         tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot, &moving_slot);
-    // Frame-coherent photons retrace the same paths while nothing moved: then the ring holds
-    // what it held, and the tree built on it stands.
-    kept_tree_ = may_keep && slot == replaced_;
-    kept_moving_tree_ = may_keep && moving_slot == moving_replaced_;
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
@@ -183,14 +176,10 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   ++frame_;
   {
     ScopedStage stage(c.times, "prepare/kd-tree");
-    if (!kept_tree_) {
-      ring_.gather(map_);
-      tree_.build(map_, uint32_t(s.stop_recursion_size));
-    }
-    if (!kept_moving_tree_) {
-      moving_ring_.gather(moving_map_);
-      moving_tree_.build(moving_map_, uint32_t(s.stop_recursion_size));
-    }
+    // Frame-coherent photons retrace the same paths while nothing moved: then a ring holds what
+    // it held, and the tree built on it stands.
+    still_.update(uint32_t(s.stop_recursion_size));
+    moving_.update(uint32_t(s.stop_recursion_size));
   }
 
   const EstimateSettings last = estimate_;
@@ -201,7 +190,7 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   if (s.use_radius_heuristic && photon_count() > 0) {
     // Eq 3.7 with r_n the radius of the sphere around all photons.
     vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const MapPhotons* m : {&map_, &moving_map_})
+    for (const MapPhotons* m : {&still_.photons(), &moving_.photons()})
       for (const vec3& p : m->position) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const float rn = 0.5f * glm::length(hi - lo);
     e.max_radius =
@@ -211,11 +200,11 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   e.slice_half = s.slice_thickness_rel * diagonal_;
   e.direction_test = s.direction_test;
   e.exact = s.exact_photon_map;
-  e.flux_scale = ring_.filled() > 0 ? 1.0f / float(ring_.filled()) : 0.0f;
+  e.flux_scale = ring().filled() > 0 ? 1.0f / float(ring().filled()) : 0.0f;
   e.final_gather_rays = s.final_gathering ? s.final_gathering_samples : 0;
   e.final_gather_seed = hash_u32(uint32_t(s.seed) ^ rest_pass_);
   // Estimates made on the kept trees with the same settings stand (indirect reads known_).
-  if (!(kept_tree_ && kept_moving_tree_ && e == last)) known_.clear();
+  if (!(kept_tree() && kept_moving_tree() && e == last)) known_.clear();
 }
 
 void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {

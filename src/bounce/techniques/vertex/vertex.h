@@ -68,19 +68,19 @@ class VertexPhotonMapping final : public Technique {
   const RefinedMesh& refined() const { return refined_; }
   // The photons of the lights that stay put; those of lights that move (the flashlight) are
   // held apart, so that the first tree stands while only they change.
-  const PhotonRing& ring() const { return ring_; }
-  const PhotonRing& moving_ring() const { return moving_ring_; }
+  const PhotonRing& ring() const { return still_.ring(); }
+  const PhotonRing& moving_ring() const { return moving_.ring(); }
   // Both trees, searched as one.
-  PhotonMapView photon_map() const { return {tree_.view(), moving_tree_.view()}; }
-  size_t photon_count() const { return tree_.size() + moving_tree_.size(); }
+  PhotonMapView photon_map() const { return {still_.tree().view(), moving_.tree().view()}; }
+  size_t photon_count() const { return still_.tree().size() + moving_.tree().size(); }
   // The estimate settings of the last frame (radius, slice, flux scale).
   const EstimateSettings& estimate_settings() const { return estimate_; }
   // Irradiance estimates made in the last frame.
   uint64_t estimates() const { return estimates_; }
   // Whether the last frame kept the kd-tree of the lights that stay put (its photons equalled
   // those they replaced); that of the moving lights' photons.
-  bool kept_tree() const { return kept_tree_; }
-  bool kept_moving_tree() const { return kept_moving_tree_; }
+  bool kept_tree() const { return still_.kept(); }
+  bool kept_moving_tree() const { return moving_.kept(); }
 
  private:
   VertexSettings settings_;
@@ -88,23 +88,17 @@ class VertexPhotonMapping final : public Technique {
   bool started_ = false;
   int refined_with_ = -1;
   RefinedMesh refined_;
-  PhotonRing ring_, moving_ring_;
+  // The photons of the lights that stay put, and of those that moved (moving_lights_).
+  RingedPhotonTree still_, moving_;
   VertexPhotonTracer tracer_;
-  MapPhotons map_, moving_map_;
-  PhotonKdTree tree_, moving_tree_;
   // The scene's lights last frame, and per light whether it moved since the ring restarted.
   std::vector<Light> last_lights_;
-  std::vector<uint8_t> moving_;
+  std::vector<uint8_t> moving_lights_;
   EstimateSettings estimate_;
   uint32_t frame_ = 0;      // frames since the ring was reset
   uint32_t rest_pass_ = 0;  // frames at rest since the last change
   uint64_t estimates_ = 0;
   float diagonal_ = 1.0f;
-  // keep_unchanged: the photons this frame's slot held before it was refilled; whether the
-  // tree still holds.
-  MapPhotons replaced_, moving_replaced_;
-  bool kept_tree_ = false;
-  bool kept_moving_tree_ = false;
 
   // Per pixel: its refined triangle, weights and side; per key (or corner) and side: whether a
   // pixel needs it, and its irradiance.

@@ -170,15 +170,8 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
   const auto join = [&](const std::vector<MapPhotons>& chunks, MapPhotons& to) {
     size_t total = 0;
     for (size_t c = 0; c < chunk_count; ++c) total += chunks[c].size();
-    to.position.reserve(to.size() + total);
-    to.flux.reserve(to.size() + total);
-    to.normal.reserve(to.size() + total);
-    for (size_t c = 0; c < chunk_count; ++c) {
-      const MapPhotons& chunk = chunks[c];
-      to.position.insert(to.position.end(), chunk.position.begin(), chunk.position.end());
-      to.flux.insert(to.flux.end(), chunk.flux.begin(), chunk.flux.end());
-      to.normal.insert(to.normal.end(), chunk.normal.begin(), chunk.normal.end());
-    }
+    to.reserve(to.size() + total);
+    for (size_t c = 0; c < chunk_count; ++c) to.append(chunks[c]);
     return total;
   };
   size_t total = join(chunks_, out);
