@@ -42,19 +42,27 @@ void parallel_for_2d(int width, int height, Body&& body) {
                     });
 }
 
-// Calls body(x0, y0, x1, y1) for every tile of a width x height image (tile x tile pixels), for
-// host code that batches a tile's work (rays handed to the Tracer as one stream).
+// Calls body(x0, y0, x1, y1) for every tile of a width x height image (tile_width x tile_height
+// pixels), for host code that batches a tile's work (rays handed to the Tracer as one stream).
 template <typename Body>
-void parallel_for_tiles(int width, int height, int tile, Body&& body) {
-  const int tiles_x = (width + tile - 1) / tile;
-  const int tiles_y = (height + tile - 1) / tile;
+void parallel_for_tiles(int width, int height, int tile_width, int tile_height, Body&& body) {
+  const int tiles_x = (width + tile_width - 1) / tile_width;
+  const int tiles_y = (height + tile_height - 1) / tile_height;
   tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
                     [&](const tbb::blocked_range<int>& r) {
                       for (int t = r.begin(); t != r.end(); ++t) {
-                        const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-                        body(x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height));
+                        const int x0 = (t % tiles_x) * tile_width;
+                        const int y0 = (t / tiles_x) * tile_height;
+                        body(x0, y0, std::min(x0 + tile_width, width),
+                             std::min(y0 + tile_height, height));
                       }
                     });
+}
+
+// Square tiles of tile x tile pixels.
+template <typename Body>
+void parallel_for_tiles(int width, int height, int tile, Body&& body) {
+  parallel_for_tiles(width, height, tile, tile, body);
 }
 
 // Limits the worker threads while alive (0 = no limit); used by --threads and determinism tests.

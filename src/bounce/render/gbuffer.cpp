@@ -30,12 +30,15 @@ void GBuffer::resize(int w, int h) {
 
 uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g) {
-  constexpr int kTile = 8;
+  // Rays go to the tracer 64 neighbouring pixels of a row at a time: coherent packets, and the
+  // G-buffer's dozen arrays are written along their rows (in 8 x 8 tiles, a tile row is 96 bytes
+  // of each array: the writes took twice as long, and the stage about 2.5 ms more on a level at
+  // 640 x 360; docs/benchmarks.md).
+  constexpr int kRun = 64;
   const GBufferView view = g.view();
-  // Rays go to the tracer in rows of 8 pixels: the packets it traces are as coherent as possible.
-  parallel_for_tiles(g.width, g.height, kTile, [&](int x0, int y0, int x1, int y1) {
-    std::array<Ray, kTile * kTile> rays;
-    std::array<Hit, kTile * kTile> hits;
+  parallel_for_tiles(g.width, g.height, kRun, 1, [&](int x0, int y0, int x1, int y1) {
+    std::array<Ray, kRun> rays;
+    std::array<Hit, kRun> hits;
     size_t n = 0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
