@@ -137,19 +137,31 @@ BOUNCE_LANE_INLINE void shade_row(const ConstGBufferView& g, size_t i0, int n, v
   }
 }
 
+// kGlossy: whether any pixel of the row has a specular lobe (lane_shade).
+template <bool kGlossy>
 void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
                     const AreaLightView& light, float scale, LightRow& row) {
   const vec3 radiance = light.radiance;
   const float area = light.area;
   shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int j) {
-    return area_light_lane(s, load3(row.q, j), load3(row.q_normal, j), radiance, area, scale);
+    return area_light_lane<kGlossy>(s, load3(row.q, j), load3(row.q_normal, j), radiance, area,
+                                    scale);
   });
 }
 
+template <bool kGlossy>
 void shade_punctual_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
                         const PunctualLane& light, LightRow& row) {
-  shade_row(g, i0, n, eye, row,
-            [&](const LaneSurface& s, int) { return punctual_light_lane(s, light, 1.0f); });
+  shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int) {
+    return punctual_light_lane<kGlossy>(s, light, 1.0f);
+  });
+}
+
+// Whether any of the row's pixels reflects specularly.
+bool row_is_glossy(const ConstGBufferView& g, size_t i0, int n) {
+  bool glossy = false;
+  for (int j = 0; j < n; ++j) glossy |= max_component(g.f0[i0 + size_t(j)]) > 0.0f;
+  return glossy;
 }
 
 }  // namespace
@@ -204,8 +216,12 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         };
         for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
         if (select) selection.start(uint32_t(i0), width, settings);
+        const bool glossy = row_is_glossy(view, i0, width);
         for (const PunctualLane& light : punctual) {
-          shade_punctual_row(view, i0, width, eye, light, row);
+          if (glossy)
+            shade_punctual_row<true>(view, i0, width, eye, light, row);
+          else
+            shade_punctual_row<false>(view, i0, width, eye, light, row);
           hand_off();
         }
         for (uint32_t a = 0; a < scene.area_light_count; ++a) {
@@ -215,7 +231,10 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
                                            settings.frame, settings.seed);
           for (int k = 0; k < n; ++k) {
             pick_area_light_row(scene, light, k, n, width, row);
-            shade_area_row(view, i0, width, eye, light, inv_n, row);
+            if (glossy)
+              shade_area_row<true>(view, i0, width, eye, light, inv_n, row);
+            else
+              shade_area_row<false>(view, i0, width, eye, light, inv_n, row);
             hand_off();
           }
         }

@@ -69,14 +69,21 @@ BOUNCE_HD BOUNCE_LANE_INLINE LaneSurface lane_surface(const ConstGBufferView& g,
 
 // The BRDF times the cosine and `weight` (radiance / pdf) and `scale`, for a sample from unit
 // direction wi; 0 unless `valid` and wi is in front of both the shading normal and the face.
+// Without kGlossy the surface must have no specular lobe (f0 = 0), which then costs nothing: the
+// GGX arithmetic is most of a lane, and a row loop over purely diffuse pixels (a Quake level, the
+// Cornell box) skips it with the same result.
+template <bool kGlossy = true>
 BOUNCE_HD BOUNCE_LANE_INLINE vec3 lane_shade(const LaneSurface& s, vec3 wi, vec3 weight,
                                              float scale, bool valid) {
   const float cos_theta = glm::dot(s.normal, wi);
-  const float n_dot_v = glm::dot(s.normal, s.wo);
-  const vec3 specular =
-      ggx_specular_front(s.normal, s.wo, wi, cos_theta, n_dot_v, s.roughness, s.f0);
-  const bool glossy = (max_component(s.f0) > 0.0f) & (n_dot_v > 0.0f);
-  const vec3 f = lambert(s.albedo) + pick(glossy, specular, vec3(0.0f));
+  vec3 f = lambert(s.albedo);
+  if constexpr (kGlossy) {
+    const float n_dot_v = glm::dot(s.normal, s.wo);
+    const vec3 specular =
+        ggx_specular_front(s.normal, s.wo, wi, cos_theta, n_dot_v, s.roughness, s.f0);
+    const bool glossy = (max_component(s.f0) > 0.0f) & (n_dot_v > 0.0f);
+    f = f + pick(glossy, specular, vec3(0.0f));
+  }
   const vec3 radiance = f * weight * (cos_theta * scale);
   const bool arrives = valid & (cos_theta > 0.0f) & (glm::dot(s.geometric_normal, wi) > 0.0f);
   return pick(arrives, radiance, vec3(0.0f));
@@ -84,6 +91,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE vec3 lane_shade(const LaneSurface& s, vec3 wi, vec3
 
 // The sample towards point q (front-face normal q_normal) of an area light of `light_radiance`
 // and total `light_area`, sampled by area, with the BRDF, both cosines and `scale` applied.
+template <bool kGlossy = true>
 BOUNCE_HD BOUNCE_LANE_INLINE LaneSample area_light_lane(const LaneSurface& s, vec3 q, vec3 q_normal,
                                                         vec3 light_radiance, float light_area,
                                                         float scale) {
@@ -97,7 +105,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE LaneSample area_light_lane(const LaneSurface& s, ve
   // radiance / pdf, as area_light_sample weighs it.
   const vec3 weight = light_radiance * ((cos_light * light_area) / d2);
   // In front of the light's face (and, lane_shade checks, of the surface's).
-  out.radiance = lane_shade(s, out.wi, weight, scale, (d2 > 0.0f) & (cos_light > 0.0f));
+  out.radiance = lane_shade<kGlossy>(s, out.wi, weight, scale, (d2 > 0.0f) & (cos_light > 0.0f));
   return out;
 }
 
@@ -134,6 +142,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE float spot_falloff_lane(const PunctualLane& l, vec3
 
 // The one sample of punctual light l (sample_punctual_light), with the BRDF, the cosine and
 // `scale` applied.
+template <bool kGlossy = true>
 BOUNCE_HD BOUNCE_LANE_INLINE LaneSample punctual_light_lane(const LaneSurface& s,
                                                             const PunctualLane& l, float scale) {
   const vec3 to_light = l.position - s.origin;
@@ -145,7 +154,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE LaneSample punctual_light_lane(const LaneSurface& s
   out.wi = pick(l.directional, -l.direction, towards);
   out.distance = pick(l.directional, std::numeric_limits<float>::infinity(), distance);
   const vec3 weight = pick(l.directional, l.power, l.power * (falloff / d2));
-  out.radiance = lane_shade(s, out.wi, weight, scale, l.directional | (d2 > 0.0f));
+  out.radiance = lane_shade<kGlossy>(s, out.wi, weight, scale, l.directional | (d2 > 0.0f));
   return out;
 }
 
