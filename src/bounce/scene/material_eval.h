@@ -16,9 +16,12 @@ struct MaterialPoint {
   vec3 emission{0.0f};  // front-face emission
 };
 
+// Inlined (as TextureView::sample is): out of line, its vec3 came back in two registers that the
+// caller stored and reloaded as one, a load that waits for every earlier store to drain (the
+// G-buffer's writes to memory); 0.45 ms of a level's G-buffer at 640x360.
 template <typename Textures>
-BOUNCE_HD vec3 texture_at(const Textures& textures, int index, const TextureTransform& transform,
-                          vec2 uv) {
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_at(const Textures& textures, int index,
+                                             const TextureTransform& transform, vec2 uv) {
   return textures[index].sample(transform.apply(uv));
 }
 

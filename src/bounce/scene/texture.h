@@ -43,7 +43,7 @@ struct TextureView {
   }
 
   // Bilinear, repeat wrapping; (0, 0) is the top-left texel's corner, as in glTF.
-  BOUNCE_HD vec3 sample(vec2 uv) const {
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 sample(vec2 uv) const {
     const float x = repeat(uv.x) * float(width) - 0.5f;
     const float y = repeat(uv.y) * float(height) - 0.5f;
     const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
