@@ -33,6 +33,24 @@ TEST(ParallelFor2D, VisitsEveryPixelOnce) {
   }
 }
 
+TEST(ParallelForTiles, CoverEveryPixelOnceInTilesOfTheGivenShape) {
+  for (const ivec2 size : {ivec2(0, 0), ivec2(1, 1), ivec2(13, 7), ivec2(100, 37), ivec2(3, 0)})
+    for (const ivec2 tile : {ivec2(8, 8), ivec2(64, 1), ivec2(5, 3)}) {
+      std::vector<int> visits(size_t(size.x) * size.y, 0);
+      parallel_for_tiles(size.x, size.y, tile.x, tile.y, [&](int x0, int y0, int x1, int y1) {
+        // A tile starts on the grid and is clipped only by the image's edges.
+        EXPECT_EQ(x0 % tile.x, 0);
+        EXPECT_EQ(y0 % tile.y, 0);
+        EXPECT_EQ(x1, std::min(x0 + tile.x, size.x));
+        EXPECT_EQ(y1, std::min(y0 + tile.y, size.y));
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) ++visits[size_t(y) * size.x + x];  // one task a pixel
+      });
+      for (int v : visits)
+        EXPECT_EQ(v, 1) << size.x << "x" << size.y << " in " << tile.x << "x" << tile.y;
+    }
+}
+
 TEST(ExclusiveScan, MatchesASerialPrefixSumInAndOutOfPlace) {
   for (size_t n : kSizes) {
     const std::vector<uint32_t> in = random_values(n, 50, uint32_t(n) + 1);
