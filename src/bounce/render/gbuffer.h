@@ -29,7 +29,7 @@ struct GBuffer {
   // interpolates per-vertex data such as light stored at mesh vertices.
   std::vector<vec2> barycentric;
   // Screen-space motion in pixels from where this surface point was in the previous frame to
-  // where it is now; (0, 0) until temporal reuse fills it (room reserved for it).
+  // where it is now: compute_motion's, after build_gbuffer (zero from resize until then).
   std::vector<vec2> motion;
 
   void resize(int w, int h);
@@ -71,7 +71,8 @@ struct GBuffer {
 namespace bounce {
 
 // Fills the G-buffer (already sized) with one primary ray per pixel through sub-pixel position
-// `subpixel` in [0, 1)^2 ((0.5, 0.5) is the centre). Returns the number of rays traced.
+// `subpixel` in [0, 1)^2 ((0.5, 0.5) is the centre), all but its motion (compute_motion).
+// Returns the number of rays traced.
 uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g);
 // The same from the Scene itself, for callers without a SceneData (tests, benchmarks): copies
