@@ -95,11 +95,33 @@ struct RowSelection {
   }
 };
 
+// An area light's triangles as rows of kCornerFloats floats: corners p0, p1 and p2, then the
+// unit normal. area_light_point_at reaches them through the light's triangle references and the
+// scene's meshes, a chain of dependent loads for each pixel; the row loop below reads each
+// pixel's corners from this table in one step.
+constexpr uint32_t kCornerFloats = 12;
+std::vector<float> area_light_corners(const SceneView& scene, const AreaLightView& light) {
+  std::vector<float> table;
+  table.reserve(size_t(light.triangle_count) * kCornerFloats);
+  const auto put = [&](vec3 v) { table.insert(table.end(), {v.x, v.y, v.z}); };
+  for (uint32_t t = 0; t < light.triangle_count; ++t) {
+    const TriangleRef ref = light.triangles[t];
+    const MeshView& mesh = scene.meshes[ref.mesh];
+    const uvec3 tri = mesh.triangles[ref.triangle];
+    put(mesh.positions[tri.x]);
+    put(mesh.positions[tri.y]);
+    put(mesh.positions[tri.z]);
+    put(light.normals[t]);
+  }
+  return table;
+}
+
 // Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
 // the searches of the light's triangle table run in lockstep (sample_cdf's steps, one at a time
-// for every pixel: no branch to mispredict, and the pixels' loads overlap).
-void pick_area_light_row(const SceneView& scene, const AreaLightView& light, int k, int n,
-                         int width, LightRow& row) {
+// for every pixel: no branch to mispredict, and the pixels' loads overlap), then each pixel's
+// point on its triangle (area_light_point_at's, from `corners`: area_light_corners').
+void pick_area_light_row(const AreaLightView& light, const float* corners, int k, int n, int width,
+                         LightRow& row) {
   const float* cdf = light.cdf;
   const uint32_t count = light.triangle_count;
   for (int j = 0; j < width; ++j) {
@@ -112,11 +134,12 @@ void pick_area_light_row(const SceneView& scene, const AreaLightView& light, int
   for (int j = 0; j < width; ++j) {
     const float ux = row.u[j].x;
     const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
-    const AreaLightPoint q =
-        area_light_point_at(scene.meshes, light.triangles, light.normals,
-                            {entry, vec2(cdf_stretch(cdf, entry, ux), row.u[j].y)});
-    row.q[j] = q.position;
-    row.q_normal[j] = q.normal;
+    const float* c = corners + entry * kCornerFloats;
+    const vec2 v(cdf_stretch(cdf, entry, ux), row.u[j].y);
+    store3(row.q, size_t(j),
+           point_on_triangle(vec3(c[0], c[1], c[2]), vec3(c[3], c[4], c[5]), vec3(c[6], c[7], c[8]),
+                             v));
+    store3(row.q_normal, size_t(j), vec3(c[9], c[10], c[11]));
   }
 }
 
@@ -190,6 +213,9 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
     const float inv_n = 1.0f / float(n);
     std::vector<PunctualLane> punctual(scene.light_count);
     for (uint32_t l = 0; l < scene.light_count; ++l) punctual[l] = punctual_lane(scene.lights[l]);
+    std::vector<std::vector<float>> corners(scene.area_light_count);
+    for (uint32_t a = 0; a < scene.area_light_count; ++a)
+      corners[a] = area_light_corners(scene, scene.area_lights[a]);
     // With one sample per pixel (one light, one sample: the Cornell box in real time) the
     // selection keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
     const bool select =
@@ -230,7 +256,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
             row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
                                            settings.frame, settings.seed);
           for (int k = 0; k < n; ++k) {
-            pick_area_light_row(scene, light, k, n, width, row);
+            pick_area_light_row(light, corners[a].data(), k, n, width, row);
             if (glossy)
               shade_area_row<true>(view, i0, width, eye, light, inv_n, row);
             else
