@@ -69,9 +69,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE LaneSurface lane_surface(const ConstGBufferView& g,
 
 // The BRDF times the cosine and `weight` (radiance / pdf) and `scale`, for a sample from unit
 // direction wi; 0 unless `valid` and wi is in front of both the shading normal and the face.
-// Without kGlossy the surface must have no specular lobe (f0 = 0), which then costs nothing: the
-// GGX arithmetic is most of a lane, and a row loop over purely diffuse pixels (a Quake level, the
-// Cornell box) skips it with the same result.
+// Without kGlossy the surface must have no specular lobe (f0 = 0), which then costs nothing: a
+// row loop over purely diffuse pixels (a Quake level, the Cornell box) skips the GGX arithmetic
+// with the same result (1.3 of a level's 17 ms of direct light).
 template <bool kGlossy = true>
 BOUNCE_HD BOUNCE_LANE_INLINE vec3 lane_shade(const LaneSurface& s, vec3 wi, vec3 weight,
                                              float scale, bool valid) {
