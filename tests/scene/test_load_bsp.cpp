@@ -10,6 +10,7 @@
 #include "bounce/scene/quake/bsp.h"
 #include "bounce/scene/quake/load_quake.h"
 #include "bounce/scene/quake/units.h"
+#include "bounce/trace/tracer.h"
 #include "bsp_build.h"
 #include "scene_test_util.h"
 
@@ -150,6 +151,49 @@ TEST(LoadBsp, ABareBspFileLoadsThroughTheSceneSpec) {
   testing::internal::GetCapturedStderr();
   EXPECT_EQ(scene.triangle_count(), 2u);
   EXPECT_TRUE(scene.has_camera);  // framed from the bounds: the map has no spawn point
+}
+
+// A map whose vertices sit within 1e-38 units of the origin (the one a fuzzer found): Embree's
+// high-quality builder asserted (aborting the process) on the subnormal coordinates of its
+// triangles, so the tracer gives Embree zero for them.
+TEST(LoadBsp, SubnormalCoordinatesBuildAnAccelerationStructure) {
+  BspBuild b;
+  b.textures.push_back({"", {0, 0}});
+  const float tiny = 6.0e-39f, tinier = 2.8e-45f;
+  const std::array<std::array<float, 3>, 13> p = {{{tiny, tiny, tiny},
+                                                   {tiny * 1.004f, tiny, tiny},
+                                                   {tiny, 64, 64},
+                                                   {0, 96, 64},
+                                                   {0, 32, 96},
+                                                   {0, 64, 96},
+                                                   {0, 96, 96},
+                                                   {0, 0, tinier},
+                                                   {9.4e-38f, 2.35e-38f, 0},
+                                                   {2.4e-35f, 0, 0},
+                                                   {0, 0, 0},
+                                                   {0, 0, 0},
+                                                   {0, 0, 0}}};
+  for (const auto& q : p) b.vertices.push_back({q, {0, 0, 1}, {0, 0}});
+  b.mesh_vertices = {0, 0, 1, 0, 3, 2};
+  BspBuild::Face polygon;
+  polygon.vertex_count = 4;
+  polygon.mesh_vertex_count = 6;
+  BspBuild::Face patch;
+  patch.type = 2;
+  patch.first_vertex = 4;
+  patch.vertex_count = 9;
+  patch.size = {3, 3};
+  b.faces = {polygon, patch};
+  TempDir dir;
+  const std::string path = dir.write("tiny.bsp", b.bytes());
+  testing::internal::CaptureStderr();
+  const Scene scene = load_scene(path);
+  testing::internal::GetCapturedStderr();
+  ASSERT_GT(scene.triangle_count(), 0u);
+  const auto tracer = make_embree_tracer(scene, BuildQuality::kHigh);
+  // Every ray still gets an answer: straight down through the map's origin.
+  const Hit hit = tracer->intersect(Ray{vec3(0.0f, 10.0f, 0.0f), 0.0f, vec3(0.0f, -1.0f, 0.0f)});
+  EXPECT_TRUE(!hit.valid() || std::isfinite(hit.t));
 }
 
 // A 2 x 2 uncompressed 24-bit TGA, top row first: red, green / blue, white.

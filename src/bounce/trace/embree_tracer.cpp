@@ -171,9 +171,16 @@ class EmbreeTracer final : public Tracer {
   TracerStats stats() const override { return {size_t(std::max<ssize_t>(0, memory_)), build_ms_}; }
 
  private:
+  // Coordinates within 1e-30 of zero go to Embree as zero (a move of less than 1e-30 m). Its
+  // spatial-split builder runs with denormals flushed to zero, and a triangle edge between two
+  // such tiny coordinates can cross a split while the difference of its ends flushes to zero:
+  // Debian's Embree 3.13.5 then fails an assertion and aborts the process (a fuzzed map with
+  // coordinates of 1e-39 to 1e-35 found it). Past 1e-30, two different floats differ by more
+  // than the smallest normal float.
+  static float embree_coordinate(float v) { return std::fabs(v) < 1e-30f ? 0.0f : v; }
   static void copy_vertices(const Mesh& mesh, float* vertices) {
     for (size_t i = 0; i < mesh.positions.size(); ++i)
-      for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+      for (int c = 0; c < 3; ++c) vertices[3 * i + c] = embree_coordinate(mesh.positions[i][c]);
   }
 
   void attach(const Mesh& mesh, unsigned id, RTCBuildQuality quality) {
