@@ -95,25 +95,29 @@ struct RowSelection {
   }
 };
 
-// An area light's triangles as rows of kCornerFloats floats: corners p0, p1 and p2, then the
-// unit normal. area_light_point_at reaches them through the light's triangle references and the
-// scene's meshes, a chain of dependent loads for each pixel; the row loop below reads each
-// pixel's corners from this table in one step.
+// An area light's triangles as kCornerFloats planes of triangle_count floats each: the corners
+// p0, p1 and p2, then the unit normal, component by component. area_light_point_at reaches them
+// through the light's triangle references and the scene's meshes, a chain of dependent loads for
+// each pixel; the row loop below gathers each pixel's corners from these planes, as vector code.
 constexpr uint32_t kCornerFloats = 12;
 std::vector<float> area_light_corners(const SceneView& scene, const AreaLightView& light) {
-  std::vector<float> table;
-  table.reserve(size_t(light.triangle_count) * kCornerFloats);
-  const auto put = [&](vec3 v) { table.insert(table.end(), {v.x, v.y, v.z}); };
-  for (uint32_t t = 0; t < light.triangle_count; ++t) {
+  const size_t count = light.triangle_count;
+  std::vector<float> planes(count * kCornerFloats);
+  const auto put = [&](size_t t, uint32_t first, vec3 v) {
+    planes[first * count + t] = v.x;
+    planes[(first + 1) * count + t] = v.y;
+    planes[(first + 2) * count + t] = v.z;
+  };
+  for (size_t t = 0; t < count; ++t) {
     const TriangleRef ref = light.triangles[t];
     const MeshView& mesh = scene.meshes[ref.mesh];
     const uvec3 tri = mesh.triangles[ref.triangle];
-    put(mesh.positions[tri.x]);
-    put(mesh.positions[tri.y]);
-    put(mesh.positions[tri.z]);
-    put(light.normals[t]);
+    put(t, 0, mesh.positions[tri.x]);
+    put(t, 3, mesh.positions[tri.y]);
+    put(t, 6, mesh.positions[tri.z]);
+    put(t, 9, light.normals[t]);
   }
-  return table;
+  return planes;
 }
 
 // Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
@@ -131,15 +135,28 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
   for_cdf_halves(count, [&](uint32_t half) {
     for (int j = 0; j < width; ++j) row.base[j] = cdf_halve(cdf, row.base[j], half, row.u[j].x);
   });
+  // Two loops, each of which vectorises: the entries and stretched coordinates, then the points.
+  float stretched[LightRow::kWidth], uy[LightRow::kWidth];
+  BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
     const float ux = row.u[j].x;
     const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
-    const float* c = corners + entry * kCornerFloats;
-    const vec2 v(cdf_stretch(cdf, entry, ux), row.u[j].y);
+    row.base[j] = entry;
+    // cdf_stretch without its branch: the entry before the first reads entry 0, masked.
+    const float start = pick(entry == 0, 0.0f, cdf[entry - uint32_t(entry != 0)]);
+    const float span = cdf[entry] - start;
+    stretched[j] = pick(span > 0.0f, glm::clamp((ux - start) / span, 0.0f, 0.99999994f), 0.5f);
+    uy[j] = row.u[j].y;
+  }
+  BOUNCE_IVDEP
+  for (int j = 0; j < width; ++j) {
+    const uint32_t e = row.base[j];
+    const auto c = [&](uint32_t f) { return corners[f * count + e]; };
+    const vec2 v(stretched[j], uy[j]);
     store3(row.q, size_t(j),
-           point_on_triangle(vec3(c[0], c[1], c[2]), vec3(c[3], c[4], c[5]), vec3(c[6], c[7], c[8]),
+           point_on_triangle(vec3(c(0), c(1), c(2)), vec3(c(3), c(4), c(5)), vec3(c(6), c(7), c(8)),
                              v));
-    store3(row.q_normal, size_t(j), vec3(c[9], c[10], c[11]));
+    store3(row.q_normal, size_t(j), vec3(c(9), c(10), c(11)));
   }
 }
 
