@@ -2,6 +2,8 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "bounce/core/parallel.h"
@@ -14,35 +16,29 @@ namespace {
 // Tracer's stream call is what makes this stage fast on the CPU.
 struct ShadowBatch {
   static constexpr size_t kCapacity = 1024;
-  std::vector<Ray> rays;
-  std::vector<vec3> radiance;
-  std::vector<uint32_t> pixel;
-  std::vector<uint8_t> blocked;
+  // Fixed arrays and a count: a vector's push_back checked its capacity three times per ray.
+  std::unique_ptr<Ray[]> rays{new Ray[kCapacity]};
+  std::unique_ptr<vec3[]> radiance{new vec3[kCapacity]};
+  std::unique_ptr<uint32_t[]> pixel{new uint32_t[kCapacity]};
+  std::unique_ptr<uint8_t[]> blocked{new uint8_t[kCapacity]};
+  size_t size = 0;
   uint64_t traced = 0;
-
-  ShadowBatch() {
-    rays.reserve(kCapacity);
-    radiance.reserve(kCapacity);
-    pixel.reserve(kCapacity);
-    blocked.resize(kCapacity);
-  }
 
   // Queues pixel i's ray; a full batch is traced at once.
   void add(const Ray& ray, vec3 ray_radiance, uint32_t i, const Tracer& tracer, vec3* out) {
-    rays.push_back(ray);
-    radiance.push_back(ray_radiance);
-    pixel.push_back(i);
-    if (rays.size() == kCapacity) flush(tracer, out);
+    rays[size] = ray;
+    radiance[size] = ray_radiance;
+    pixel[size] = i;
+    if (++size == kCapacity) flush(tracer, out);
   }
 
   void flush(const Tracer& tracer, vec3* out) {
-    tracer.occluded(rays, std::span<uint8_t>(blocked.data(), rays.size()));
-    traced += rays.size();
-    for (size_t k = 0; k < rays.size(); ++k)
+    tracer.occluded(std::span<const Ray>(rays.get(), size),
+                    std::span<uint8_t>(blocked.get(), size));
+    traced += size;
+    for (size_t k = 0; k < size; ++k)
       if (!blocked[k]) out[pixel[k]] += radiance[k];
-    rays.clear();
-    radiance.clear();
-    pixel.clear();
+    size = 0;
   }
 };
 
