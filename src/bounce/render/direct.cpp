@@ -42,14 +42,29 @@ struct ShadowBatch {
   }
 };
 
+constexpr int kRowWidth = 32;
+
+// A vec3 for each pixel of a row as three planes: the row loops then load and store whole
+// vectors (from an array of vec3, GCC gathers every component with shuffles).
+struct Row3 {
+  float x[kRowWidth], y[kRowWidth], z[kRowWidth];
+
+  BOUNCE_LANE_INLINE vec3 operator[](int j) const { return {x[j], y[j], z[j]}; }
+  BOUNCE_LANE_INLINE void set(int j, vec3 v) {
+    x[j] = v.x;
+    y[j] = v.y;
+    z[j] = v.z;
+  }
+};
+
 // A row of up to kWidth pixels of one tile, for the row loop (compute_direct).
 struct LightRow {
-  static constexpr int kWidth = 32;
+  static constexpr int kWidth = kRowWidth;
   vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current area light
   vec2 u[kWidth];
   uint32_t base[kWidth];
-  vec3 q[kWidth], q_normal[kWidth];
-  vec3 origin[kWidth], wi[kWidth], radiance[kWidth];
+  Row3 q, q_normal;
+  Row3 origin, wi, radiance;
   float distance[kWidth];
 };
 
@@ -59,15 +74,15 @@ struct RowSelection {
   static constexpr int kWidth = LightRow::kWidth;
   uint32_t seed[kWidth], offers[kWidth];
   float kept[kWidth], total[kWidth], distance[kWidth];
-  vec3 wi[kWidth], radiance[kWidth];
+  Row3 wi, radiance;
 
   void start(uint32_t i0, int width, const DirectSettings& settings) {
     for (int j = 0; j < width; ++j) {
       seed[j] = ShadowSelection::for_pixel(i0 + uint32_t(j), settings).seed;
       offers[j] = 0;
       kept[j] = total[j] = distance[j] = 0.0f;
-      store3(wi, j, vec3(0.0f));
-      store3(radiance, j, vec3(0.0f));
+      wi.set(j, vec3(0.0f));
+      radiance.set(j, vec3(0.0f));
     }
   }
 
@@ -75,7 +90,7 @@ struct RowSelection {
   void offer(const LightRow& row, int width) {
     BOUNCE_IVDEP
     for (int j = 0; j < width; ++j) {
-      const vec3 r = load3(row.radiance, j);
+      const vec3 r = row.radiance[j];
       const float w = luminance(r);
       const bool carries = w > 0.0f;
       const float sum = total[j] + pick(carries, w, 0.0f);
@@ -85,8 +100,8 @@ struct RowSelection {
       total[j] = sum;
       kept[j] = pick(take, w, kept[j]);
       distance[j] = pick(take, row.distance[j], distance[j]);
-      store3(wi, j, pick(take, load3(row.wi, j), load3(wi, j)));
-      store3(radiance, j, pick(take, r, load3(radiance, j)));
+      wi.set(j, pick(take, row.wi[j], wi[j]));
+      radiance.set(j, pick(take, r, radiance[j]));
     }
   }
 };
@@ -149,10 +164,9 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
     const uint32_t e = row.base[j];
     const auto c = [&](uint32_t f) { return corners[f * count + e]; };
     const vec2 v(stretched[j], uy[j]);
-    store3(row.q, size_t(j),
-           point_on_triangle(vec3(c(0), c(1), c(2)), vec3(c(3), c(4), c(5)), vec3(c(6), c(7), c(8)),
-                             v));
-    store3(row.q_normal, size_t(j), vec3(c(9), c(10), c(11)));
+    row.q.set(j, point_on_triangle(vec3(c(0), c(1), c(2)), vec3(c(3), c(4), c(5)),
+                                   vec3(c(6), c(7), c(8)), v));
+    row.q_normal.set(j, vec3(c(9), c(10), c(11)));
   }
 }
 
@@ -166,10 +180,10 @@ BOUNCE_LANE_INLINE void shade_row(const ConstGBufferView& g, size_t i0, int n, v
     const size_t i = i0 + size_t(j);
     const LaneSurface s = lane_surface(g, i, eye);
     const LaneSample r = sample(s, j);
-    store3(row.origin, j, s.origin);
-    store3(row.wi, j, r.wi);
+    row.origin.set(j, s.origin);
+    row.wi.set(j, r.wi);
     row.distance[j] = r.distance;
-    store3(row.radiance, j, pick(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
+    row.radiance.set(j, pick(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
   }
 }
 
@@ -180,8 +194,7 @@ void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
   const vec3 radiance = light.radiance;
   const float area = light.area;
   shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int j) {
-    return area_light_lane<kGlossy>(s, load3(row.q, j), load3(row.q_normal, j), radiance, area,
-                                    scale);
+    return area_light_lane<kGlossy>(s, row.q[j], row.q_normal[j], radiance, area, scale);
   });
 }
 
