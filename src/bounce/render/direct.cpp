@@ -57,6 +57,42 @@ struct Row3 {
   }
 };
 
+// The lane surfaces (lane_surface) of a row's pixels as planes, read from the G-buffer once for
+// all the row's lights.
+struct RowSurfaces {
+  Row3 origin, normal, geometric_normal, albedo, f0, wo;
+  float roughness[kRowWidth];
+  uint32_t hit[kRowWidth];  // whether the G-buffer has a surface there
+
+  void load(const ConstGBufferView& g, size_t i0, int n, vec3 eye) {
+    BOUNCE_IVDEP
+    for (int j = 0; j < n; ++j) {
+      const size_t i = i0 + size_t(j);
+      const LaneSurface s = lane_surface(g, i, eye);
+      origin.set(j, s.origin);
+      normal.set(j, s.normal);
+      geometric_normal.set(j, s.geometric_normal);
+      albedo.set(j, s.albedo);
+      f0.set(j, s.f0);
+      wo.set(j, s.wo);
+      roughness[j] = s.roughness;
+      hit[j] = uint32_t(g.primitive[i] != kNoPrimitive);
+    }
+  }
+
+  BOUNCE_LANE_INLINE LaneSurface operator[](int j) const {
+    LaneSurface s;
+    s.origin = origin[j];
+    s.normal = normal[j];
+    s.geometric_normal = geometric_normal[j];
+    s.albedo = albedo[j];
+    s.f0 = f0[j];
+    s.roughness = roughness[j];
+    s.wo = wo[j];
+    return s;
+  }
+};
+
 // A row of up to kWidth pixels of one tile, for the row loop (compute_direct).
 struct LightRow {
   static constexpr int kWidth = kRowWidth;
@@ -64,7 +100,7 @@ struct LightRow {
   vec2 u[kWidth];
   uint32_t base[kWidth];
   Row3 q, q_normal;
-  Row3 origin, wi, radiance;
+  Row3 wi, radiance;
   float distance[kWidth];
 };
 
@@ -170,38 +206,35 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
   }
 }
 
-// The vector part of one light sample across row pixels i0 .. i0 + n - 1: sample(surface, j)
-// (a lane of light_lane.h) at each, where the G-buffer has a surface.
+// The vector part of one light sample across the row's n pixels: sample(surface, j) (a lane of
+// light_lane.h) at each, where the G-buffer has a surface.
 template <typename Sample>
-BOUNCE_LANE_INLINE void shade_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
-                                  LightRow& row, const Sample& sample) {
+BOUNCE_LANE_INLINE void shade_row(const RowSurfaces& surfaces, int n, LightRow& row,
+                                  const Sample& sample) {
   BOUNCE_IVDEP
   for (int j = 0; j < n; ++j) {
-    const size_t i = i0 + size_t(j);
-    const LaneSurface s = lane_surface(g, i, eye);
-    const LaneSample r = sample(s, j);
-    row.origin.set(j, s.origin);
+    const LaneSample r = sample(surfaces[j], j);
     row.wi.set(j, r.wi);
     row.distance[j] = r.distance;
-    row.radiance.set(j, pick(g.primitive[i] != kNoPrimitive, r.radiance, vec3(0.0f)));
+    row.radiance.set(j, pick(surfaces.hit[j] != 0, r.radiance, vec3(0.0f)));
   }
 }
 
 // kGlossy: whether any pixel of the row has a specular lobe (lane_shade).
 template <bool kGlossy>
-void shade_area_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
-                    const AreaLightView& light, float scale, LightRow& row) {
+void shade_area_row(const RowSurfaces& surfaces, int n, const AreaLightView& light, float scale,
+                    LightRow& row) {
   const vec3 radiance = light.radiance;
   const float area = light.area;
-  shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int j) {
+  shade_row(surfaces, n, row, [&](const LaneSurface& s, int j) {
     return area_light_lane<kGlossy>(s, row.q[j], row.q_normal[j], radiance, area, scale);
   });
 }
 
 template <bool kGlossy>
-void shade_punctual_row(const ConstGBufferView& g, size_t i0, int n, vec3 eye,
-                        const PunctualLane& light, LightRow& row) {
-  shade_row(g, i0, n, eye, row, [&](const LaneSurface& s, int) {
+void shade_punctual_row(const RowSurfaces& surfaces, int n, const PunctualLane& light,
+                        LightRow& row) {
+  shade_row(surfaces, n, row, [&](const LaneSurface& s, int) {
     return punctual_light_lane<kGlossy>(s, light, 1.0f);
   });
 }
@@ -249,6 +282,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
     parallel_for_tiles(g.width, g.height, LightRow::kWidth, [&](int x0, int y0, int x1, int y1) {
       ShadowBatch& b = batches.local();
       LightRow row;
+      RowSurfaces surfaces;
       RowSelection selection;
       const int width = x1 - x0;
       for (int y = y0; y < y1; ++y) {
@@ -262,18 +296,19 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
           for (int j = 0; j < width; ++j) {
             const vec3 radiance = row.radiance[j];
             if (max_component(radiance) > 0.0f)
-              b.add(shadow_ray(row.origin[j], row.wi[j], row.distance[j]), radiance,
+              b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
                     uint32_t(i0) + uint32_t(j), tracer, pixels);
           }
         };
         for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
         if (select) selection.start(uint32_t(i0), width, settings);
         const bool glossy = row_is_glossy(view, i0, width);
+        surfaces.load(view, i0, width, eye);
         for (const PunctualLane& light : punctual) {
           if (glossy)
-            shade_punctual_row<true>(view, i0, width, eye, light, row);
+            shade_punctual_row<true>(surfaces, width, light, row);
           else
-            shade_punctual_row<false>(view, i0, width, eye, light, row);
+            shade_punctual_row<false>(surfaces, width, light, row);
           hand_off();
         }
         for (uint32_t a = 0; a < scene.area_light_count; ++a) {
@@ -284,9 +319,9 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
           for (int k = 0; k < n; ++k) {
             pick_area_light_row(light, corners[a].data(), k, n, width, row);
             if (glossy)
-              shade_area_row<true>(view, i0, width, eye, light, inv_n, row);
+              shade_area_row<true>(surfaces, width, light, inv_n, row);
             else
-              shade_area_row<false>(view, i0, width, eye, light, inv_n, row);
+              shade_area_row<false>(surfaces, width, light, inv_n, row);
             hand_off();
           }
         }
@@ -294,7 +329,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         if (select)
           for (int j = 0; j < width; ++j)
             if (selection.kept[j] > 0.0f)
-              b.add(shadow_ray(row.origin[j], selection.wi[j], selection.distance[j]),
+              b.add(shadow_ray(surfaces.origin[j], selection.wi[j], selection.distance[j]),
                     ShadowSelection::weighted(selection.radiance[j], selection.kept[j],
                                               selection.total[j]),
                     uint32_t(i0) + uint32_t(j), tracer, pixels);
