@@ -64,7 +64,9 @@ struct RowSurfaces {
   float roughness[kRowWidth];
   uint32_t hit[kRowWidth];  // whether the G-buffer has a surface there
 
-  void load(const ConstGBufferView& g, size_t i0, int n, vec3 eye) {
+  // Returns whether any of them reflects specularly (f0 > 0: lane_shade's kGlossy).
+  bool load(const ConstGBufferView& g, size_t i0, int n, vec3 eye) {
+    uint32_t glossy = 0;
     BOUNCE_IVDEP
     for (int j = 0; j < n; ++j) {
       const size_t i = i0 + size_t(j);
@@ -77,7 +79,9 @@ struct RowSurfaces {
       wo.set(j, s.wo);
       roughness[j] = s.roughness;
       hit[j] = uint32_t(g.primitive[i] != kNoPrimitive);
+      glossy |= uint32_t(max_component(s.f0) > 0.0f);
     }
+    return glossy != 0;
   }
 
   BOUNCE_LANE_INLINE LaneSurface operator[](int j) const {
@@ -239,13 +243,6 @@ void shade_punctual_row(const RowSurfaces& surfaces, int n, const PunctualLane& 
   });
 }
 
-// Whether any of the row's pixels reflects specularly.
-bool row_is_glossy(const ConstGBufferView& g, size_t i0, int n) {
-  bool glossy = false;
-  for (int j = 0; j < n; ++j) glossy |= max_component(g.f0[i0 + size_t(j)]) > 0.0f;
-  return glossy;
-}
-
 }  // namespace
 
 bool direct_takes_rows(const SceneView& scene, const LightPickerView& lights,
@@ -302,8 +299,7 @@ uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, c
         };
         for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
         if (select) selection.start(uint32_t(i0), width, settings);
-        const bool glossy = row_is_glossy(view, i0, width);
-        surfaces.load(view, i0, width, eye);
+        const bool glossy = surfaces.load(view, i0, width, eye);
         for (const PunctualLane& light : punctual) {
           if (glossy)
             shade_punctual_row<true>(surfaces, width, light, row);
