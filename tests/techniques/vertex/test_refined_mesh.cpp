@@ -101,6 +101,40 @@ TEST(RefinedMesh, LocatesEveryHitAndCoversTheCoarseTriangles) {
   }
 }
 
+// A hint (a neighbouring pixel's refined triangle) changes nothing: where the point lies on the
+// hinted triangle it is taken, with the weights the descent finds; a hint on another triangle,
+// or on another coarse triangle, falls back to the descent.
+TEST(RefinedMesh, LocatingWithAHintFindsWhatTheDescentFinds) {
+  const Scene scene = make_cornell();
+  RefinedMesh r;
+  r.build(scene, 2000);
+  const RefinedMeshView v = r.view();
+  Pcg32 rng(5);
+  int taken = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const uint32_t coarse = rng.next_u32() % r.coarse_triangles();
+    vec2 b(rng.next_float(), rng.next_float());
+    if (b.x + b.y > 1.0f) b = vec2(1.0f) - b;
+    const RefinedPoint plain = locate_refined(v, coarse, b);
+    // Its own triangle, a triangle elsewhere, and the triangle of a point nearby.
+    vec2 near = b + vec2(rng.next_float() - 0.5f, rng.next_float() - 0.5f) * 0.02f;
+    near = glm::clamp(near, 0.0f, 1.0f);
+    if (near.x + near.y > 1.0f) near /= near.x + near.y;
+    for (const uint32_t hint :
+         {plain.leaf, rng.next_u32() % v.leaf_count, locate_refined(v, coarse, near).leaf}) {
+      const RefinedPoint hinted = locate_refined(v, coarse, b, hint);
+      // Off the split lines (every weight above rounding) the triangle is the descent's.
+      if (std::min({plain.weights.x, plain.weights.y, plain.weights.z}) > 1e-4f) {
+        EXPECT_EQ(hinted.leaf, plain.leaf) << k;
+        EXPECT_EQ(hinted.weights, plain.weights) << k;
+      }
+      EXPECT_EQ(v.leaf_coarse[hinted.leaf], coarse);
+      taken += hinted.leaf == hint;
+    }
+  }
+  EXPECT_GT(taken, 5000);  // the own triangle always, the nearby one often
+}
+
 // Keys are shared: a refined vertex inside a flat wall is one estimate for all its triangles.
 TEST(RefinedMesh, EstimatePointsAreSharedBetweenTriangles) {
   const Scene scene = make_cornell();

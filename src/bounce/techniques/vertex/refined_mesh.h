@@ -57,8 +57,34 @@ struct RefinedPoint {
   vec3 weights{1.0f, 0.0f, 0.0f};
 };
 
+// b's weights on refined triangle `leaf` (coarse barycentrics b), and whether b lies on it (the
+// weights unclamped are all at least 0).
+BOUNCE_HD inline bool weights_on_leaf(const RefinedMeshView& m, uint32_t leaf, vec2 b,
+                                      vec3& weights) {
+  weights = vec3(1.0f, 0.0f, 0.0f);
+  const vec2* c = m.leaf_bary + size_t(leaf) * 3;
+  const vec2 e1 = c[1] - c[0], e2 = c[2] - c[0], d = b - c[0];
+  const float det = cross2(e1, e2);
+  if (det == 0.0f) return false;
+  const float s_raw = cross2(d, e2) / det, t_raw = cross2(e1, d) / det;
+  const float s = glm::clamp(s_raw, 0.0f, 1.0f);
+  const float t = glm::clamp(t_raw, 0.0f, 1.0f - s);
+  weights = vec3(1.0f - s - t, s, t);
+  return (s_raw >= 0.0f) & (t_raw >= 0.0f) & (s_raw + t_raw <= 1.0f);
+}
+
 // The refined triangle of coarse triangle `coarse` at its barycentrics b, and b's weights there.
-BOUNCE_HD inline RefinedPoint locate_refined(const RefinedMeshView& m, uint32_t coarse, vec2 b) {
+// `hint`, a refined triangle a neighbouring pixel found (or kNoHint), is taken without a descent
+// of the tree where b lies on it: neighbouring pixels mostly share one, and the descent's
+// branches go either way.
+inline constexpr uint32_t kNoHint = 0xFFFFFFFFu;
+BOUNCE_HD inline RefinedPoint locate_refined(const RefinedMeshView& m, uint32_t coarse, vec2 b,
+                                             uint32_t hint = kNoHint) {
+  RefinedPoint p;
+  if (hint != kNoHint && m.leaf_coarse[hint] == coarse && weights_on_leaf(m, hint, b, p.weights)) {
+    p.leaf = hint;
+    return p;
+  }
   uint32_t node = m.root[coarse];
   for (;;) {
     const RefineNode& n = m.nodes[node];
@@ -75,15 +101,8 @@ BOUNCE_HD inline RefinedPoint locate_refined(const RefinedMeshView& m, uint32_t 
     }
     node = next;
   }
-  RefinedPoint p;
   p.leaf = node & ~kRefineLeaf;
-  const vec2* c = m.leaf_bary + size_t(p.leaf) * 3;
-  const vec2 e1 = c[1] - c[0], e2 = c[2] - c[0], d = b - c[0];
-  const float det = cross2(e1, e2);
-  if (det == 0.0f) return p;
-  const float s = glm::clamp(cross2(d, e2) / det, 0.0f, 1.0f);
-  const float t = glm::clamp(cross2(e1, d) / det, 0.0f, 1.0f - s);
-  p.weights = vec3(1.0f - s - t, s, t);
+  weights_on_leaf(m, p.leaf, b, p.weights);
   return p;
 }
 

@@ -230,8 +230,15 @@ void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
                            per_key};
   {
     ScopedStage stage(c.times, "indirect/locate");
-    parallel_for(
-        pixels, [&](size_t i) { locate_pixel(pv, i); }, 1024);
+    // In runs of pixels, each starting from the refined triangle the one before it found.
+    constexpr size_t kRun = 1024;
+    parallel_for((pixels + kRun - 1) / kRun,
+                 [&](size_t r) {
+                   uint32_t hint = kNoHint;
+                   for (size_t i = r * kRun, end = std::min(pixels, i + kRun); i < end; ++i)
+                     hint = locate_pixel(pv, i, hint);
+                 },
+                 1);
   }
   {
     ScopedStage stage(c.times, "indirect/estimate");

@@ -48,11 +48,15 @@ struct VertexPixelView {
 };
 static_assert(std::is_trivially_copyable_v<VertexPixelView>);
 
-BOUNCE_HD inline void locate_pixel(const VertexPixelView& v, size_t i) {
+// Pixel i's refined triangle, weights and side, and the estimates it needs flagged. `hint`: the
+// refined triangle a neighbouring pixel found (locate_refined), kNoHint for none; returns this
+// pixel's (kNoHint where it needs no light).
+BOUNCE_HD inline uint32_t locate_pixel(const VertexPixelView& v, size_t i,
+                                       uint32_t hint = kNoHint) {
   v.leaf[i] = kNoLeaf;
-  if (!v.g.hit(i) || !(max_component(v.g.albedo[i]) > 0.0f)) return;
+  if (!v.g.hit(i) || !(max_component(v.g.albedo[i]) > 0.0f)) return kNoHint;
   const uint32_t coarse = v.g.primitive[i];
-  const RefinedPoint p = locate_refined(v.mesh, coarse, v.g.barycentric[i]);
+  const RefinedPoint p = locate_refined(v.mesh, coarse, v.g.barycentric[i], hint);
   const uint32_t m = v.g.mesh[i];
   const vec3 face = v.scene.meshes[m].face_normal_area2(coarse - v.scene.triangle_offsets[m]);
   const int side = glm::dot(v.g.geometric_normal[i], face) >= 0.0f ? 0 : 1;
@@ -61,6 +65,7 @@ BOUNCE_HD inline void locate_pixel(const VertexPixelView& v, size_t i) {
   v.side[i] = uint8_t(side);
   for (int k = 0; k < 3; ++k)
     set_flag(v.needed + estimate_slot_of(v.mesh, v.per_key, p.leaf, k, side));
+  return p.leaf;
 }
 
 struct VertexEstimateView {
