@@ -13,9 +13,10 @@
 namespace bounce {
 
 // The surface at a triangle hit on `mesh`, whose material there is `material`, for a ray
-// travelling along `direction`; `textures[i].sample(uv)` reads the scene's textures. The one
-// implementation behind both surface_at forms.
-template <typename Textures>
+// travelling along `direction`; `textures[i].sample(uv)` reads the scene's textures, or with
+// kMeanTextures their means (material_at; no normal map then). The one implementation behind
+// both surface_at forms.
+template <bool kMeanTextures = false, typename Textures>
 BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& material,
                                 const Hit& hit, vec3 direction, const Textures& textures) {
   const uvec3 tri = mesh.triangles[hit.triangle];
@@ -39,7 +40,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   if (mesh.uvs) {
     uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
     TangentFrame frame;
-    if (material.normal_texture >= 0 &&
+    if (!kMeanTextures && material.normal_texture >= 0 &&
         tangent_frame(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
                       mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z], normal, frame)) {
       const vec3 mapped = frame.to_world(tangent_space_normal(material, textures, uv));
@@ -49,7 +50,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   }
   // Interpolated normals live on the same side as the face normal we shade from.
   s.normal = glm::dot(normal, s.geometric_normal) < 0.0f ? -normal : normal;
-  const MaterialPoint m = material_at(material, textures, uv);
+  const MaterialPoint m = material_at<kMeanTextures>(material, textures, uv);
   s.albedo = m.albedo;
   s.f0 = m.f0;
   s.roughness = m.roughness;
@@ -57,11 +58,13 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   return s;
 }
 
-// Evaluates the surface at a triangle `hit` (hit.valid()) for a ray travelling along `direction`.
+// Evaluates the surface at a triangle `hit` (hit.valid()) for a ray travelling along `direction`
+// (kMeanTextures: surface_on's).
+template <bool kMeanTextures = false>
 BOUNCE_HD inline SurfaceHit surface_at(const SceneView& scene, const Hit& hit, vec3 direction) {
   const MeshView& mesh = scene.meshes[hit.mesh];
-  return surface_on(mesh, scene.materials[mesh.materials[hit.triangle]], hit, direction,
-                    scene.textures);
+  return surface_on<kMeanTextures>(mesh, scene.materials[mesh.materials[hit.triangle]], hit,
+                                   direction, scene.textures);
 }
 SurfaceHit surface_at(const Scene& scene, const Hit& hit, vec3 direction);
 

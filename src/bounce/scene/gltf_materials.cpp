@@ -134,12 +134,6 @@ int texture_slot(Context& ctx, int texture, int tex_coord, const tg::ExtensionMa
   return texture_for_image(ctx, source, kind, material);
 }
 
-vec3 mean_texel(const Texture& t) {
-  glm::dvec3 sum(0.0);
-  for (const vec3& v : t.texels) sum += glm::dvec3(v);
-  return t.texels.empty() ? vec3(0.0f) : vec3(sum / double(t.texels.size()));
-}
-
 // Metallic-roughness -> our Lambert + GGX material: a metal's base colour is its specular
 // colour, a dielectric's is its diffuse albedo with F0 = 0.04 (scaled by KHR_materials_specular).
 // Textures vary base colour, metallic and roughness per texel (material_eval.h).

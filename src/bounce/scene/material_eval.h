@@ -25,19 +25,34 @@ BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_at(const Textures& textures, int index
   return textures[index].sample(transform.apply(uv));
 }
 
-template <typename Textures>
+// A texture's value at uv, or with kMean its mean (TextureView::mean): a lookup that stands for
+// the whole texture.
+template <bool kMean, typename Textures>
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_or_mean(const Textures& textures, int index,
+                                                  const TextureTransform& transform, vec2 uv) {
+  if constexpr (kMean)
+    return textures[index].mean;
+  else
+    return texture_at(textures, index, transform, uv);
+}
+
+// The material at uv. kMeanTextures: each texture's mean instead of its texels (photon hits of
+// technique `vertex`, which the seed reflects with a texture's average colour: no texel to fetch
+// from a random place in memory).
+template <bool kMeanTextures = false, typename Textures>
 BOUNCE_HD MaterialPoint material_at(const MaterialRecord& m, const Textures& textures, vec2 uv) {
   MaterialPoint p;
-  const vec3 tint = m.albedo_texture >= 0
-                        ? texture_at(textures, m.albedo_texture, m.albedo_transform, uv)
-                        : vec3(1.0f);
+  const vec3 tint = m.albedo_texture >= 0 ? texture_or_mean<kMeanTextures>(
+                                                textures, m.albedo_texture, m.albedo_transform, uv)
+                                          : vec3(1.0f);
   p.roughness = m.roughness;
   if (m.metallic_workflow) {
     // glTF: the metallic-roughness texture's green scales roughness and its blue metallic; a
     // metal's base colour is its specular colour, a dielectric's its diffuse albedo.
     float metallic = m.metallic;
     if (m.metal_rough_texture >= 0) {
-      const vec3 mr = texture_at(textures, m.metal_rough_texture, m.metal_rough_transform, uv);
+      const vec3 mr = texture_or_mean<kMeanTextures>(textures, m.metal_rough_texture,
+                                                     m.metal_rough_transform, uv);
       p.roughness = glm::clamp(p.roughness * mr.y, 0.0f, 1.0f);
       metallic = glm::clamp(metallic * mr.z, 0.0f, 1.0f);
     }
@@ -50,7 +65,8 @@ BOUNCE_HD MaterialPoint material_at(const MaterialRecord& m, const Textures& tex
   }
   p.emission = m.emission;
   if (m.emission_texture >= 0)
-    p.emission *= texture_at(textures, m.emission_texture, m.emission_transform, uv);
+    p.emission *=
+        texture_or_mean<kMeanTextures>(textures, m.emission_texture, m.emission_transform, uv);
   return p;
 }
 

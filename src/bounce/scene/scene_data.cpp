@@ -56,7 +56,7 @@ void SceneData::build(const Scene& scene) {
   for (size_t i = 0; i < scene.textures.size(); ++i) {
     const Texture& t = scene.textures[i];
     std::copy(t.texels.begin(), t.texels.end(), texels_.begin() + texels);
-    textures_[i] = {texels_.data() + texels, t.width, t.height};
+    textures_[i] = {texels_.data() + texels, t.width, t.height, mean_texel(t)};
     texels += t.texels.size();
   }
   copy_small_arrays(scene);

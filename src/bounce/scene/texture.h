@@ -34,6 +34,7 @@ struct TextureView {
   const vec3* texels = nullptr;  // row-major from the top row, linear RGB
   int width = 0;
   int height = 0;
+  vec3 mean{0.0f};  // the texels' mean (mean_texel): what a lookup over the whole texture reads
 
   // A coordinate's position within its repeat, in [0, 1]: 1 only where rounding puts a tiny
   // negative coordinate there. Not finite (NaN, or infinite: inf - inf): 0.
@@ -67,8 +68,12 @@ struct Texture {
   int height = 0;
   std::vector<vec3> texels;  // row-major from the top row, linear RGB
 
+  // The mean is left 0: SceneData's views carry it (mean_texel), the host's lookups read texels.
   TextureView view() const { return {texels.data(), width, height}; }
   vec3 sample(vec2 uv) const { return view().sample(uv); }
 };
+
+// The mean of a texture's texels (0 for none).
+vec3 mean_texel(const Texture& t);
 
 }  // namespace bounce
