@@ -230,13 +230,13 @@ void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
                            per_key};
   {
     ScopedStage stage(c.times, "indirect/locate");
-    // In runs of pixels, each starting from the refined triangle the one before it found.
+    // In runs of pixels, each starting from what the one before it found (LocateHint).
     constexpr size_t kRun = 1024;
     parallel_for((pixels + kRun - 1) / kRun,
                  [&](size_t r) {
-                   uint32_t hint = kNoHint;
+                   LocateHint hint;
                    for (size_t i = r * kRun, end = std::min(pixels, i + kRun); i < end; ++i)
-                     hint = locate_pixel(pv, i, hint);
+                     locate_pixel(pv, i, hint);
                  },
                  1);
   }

@@ -48,24 +48,41 @@ struct VertexPixelView {
 };
 static_assert(std::is_trivially_copyable_v<VertexPixelView>);
 
-// Pixel i's refined triangle, weights and side, and the estimates it needs flagged. `hint`: the
-// refined triangle a neighbouring pixel found (locate_refined), kNoHint for none; returns this
-// pixel's (kNoHint where it needs no light).
-BOUNCE_HD inline uint32_t locate_pixel(const VertexPixelView& v, size_t i,
-                                       uint32_t hint = kNoHint) {
+// What locate_pixel keeps from one pixel to the next of a run (the CPU's; a GPU thread starts
+// each pixel afresh): neighbouring pixels mostly lie on one refined triangle of one coarse
+// triangle, seen from the same side.
+struct LocateHint {
+  uint32_t leaf = kNoHint;    // the refined triangle found last (locate_refined's hint)
+  int side = -1;              // the side its estimates were flagged for
+  uint32_t coarse = kNoHint;  // the coarse triangle whose face normal `face` is
+  vec3 face{0.0f};
+};
+
+// Pixel i's refined triangle, weights and side, and the estimates it needs flagged, starting
+// from what the pixel before left in `hint`.
+BOUNCE_HD inline void locate_pixel(const VertexPixelView& v, size_t i, LocateHint& hint) {
   v.leaf[i] = kNoLeaf;
-  if (!v.g.hit(i) || !(max_component(v.g.albedo[i]) > 0.0f)) return kNoHint;
+  if (!v.g.hit(i) || !(max_component(v.g.albedo[i]) > 0.0f)) return;
   const uint32_t coarse = v.g.primitive[i];
-  const RefinedPoint p = locate_refined(v.mesh, coarse, v.g.barycentric[i], hint);
-  const uint32_t m = v.g.mesh[i];
-  const vec3 face = v.scene.meshes[m].face_normal_area2(coarse - v.scene.triangle_offsets[m]);
-  const int side = glm::dot(v.g.geometric_normal[i], face) >= 0.0f ? 0 : 1;
+  const RefinedPoint p = locate_refined(v.mesh, coarse, v.g.barycentric[i], hint.leaf);
+  if (coarse != hint.coarse) {
+    const uint32_t m = v.g.mesh[i];
+    hint.face = v.scene.meshes[m].face_normal_area2(coarse - v.scene.triangle_offsets[m]);
+    hint.coarse = coarse;
+  }
+  const int side = glm::dot(v.g.geometric_normal[i], hint.face) >= 0.0f ? 0 : 1;
   v.leaf[i] = p.leaf;
   v.weights[i] = p.weights;
   v.side[i] = uint8_t(side);
-  for (int k = 0; k < 3; ++k)
-    set_flag(v.needed + estimate_slot_of(v.mesh, v.per_key, p.leaf, k, side));
-  return p.leaf;
+  if (p.leaf != hint.leaf || side != hint.side)
+    for (int k = 0; k < 3; ++k)
+      set_flag(v.needed + estimate_slot_of(v.mesh, v.per_key, p.leaf, k, side));
+  hint.leaf = p.leaf;
+  hint.side = side;
+}
+BOUNCE_HD inline void locate_pixel(const VertexPixelView& v, size_t i) {
+  LocateHint fresh;
+  locate_pixel(v, i, fresh);
 }
 
 struct VertexEstimateView {
