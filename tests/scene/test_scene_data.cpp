@@ -5,6 +5,7 @@
 #include "bounce/render/surface.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
+#include "checker_texture.h"
 
 namespace bounce {
 namespace {
@@ -13,13 +14,7 @@ namespace {
 // second mesh, and the Cornell box around them: every kind of array a SceneView points to.
 Scene textured_scene() {
   Scene s = make_cornell();
-  Texture t;
-  t.name = "checker";
-  t.width = 2;
-  t.height = 2;
-  t.texels = {vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f),
-              vec3(1.0f, 1.0f, 0.0f)};
-  s.textures.push_back(t);
+  s.textures.push_back(checker_texture());
   Material textured;
   textured.name = "textured";
   textured.albedo = vec3(0.5f);

@@ -5,6 +5,7 @@
 #include "bounce/render/surface.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_data.h"
+#include "checker_texture.h"
 
 namespace bounce {
 namespace {
@@ -12,13 +13,7 @@ namespace {
 // A quad textured with a 2 x 2 checker of red, green, blue and yellow.
 Scene checker_quad() {
   Scene s;
-  Texture t;
-  t.name = "checker";
-  t.width = 2;
-  t.height = 2;
-  t.texels = {vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f),
-              vec3(1.0f, 1.0f, 0.0f)};
-  s.textures.push_back(t);
+  s.textures.push_back(checker_texture());
   Material m;
   m.name = "checker";
   m.albedo = vec3(0.5f);
