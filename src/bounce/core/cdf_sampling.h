@@ -18,11 +18,15 @@ struct CdfSample {
 
 // u, which fell in the interval of `entry`, stretched back over [0, 1) within that interval, so
 // that the caller can reuse the same number inside the entry and keep its stratification.
+// Written as selects over loads that are always valid (entry 0 reads its own entry as the one
+// before, then takes 0), so a row of pixels' stretches vectorise (render/direct.cpp).
 BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
-  const float start = entry == 0 ? 0.0f : cdf[entry - 1];
+  const float before = cdf[entry - uint32_t(entry != 0)];
+  const float start = entry == 0 ? 0.0f : before;
   const float span = cdf[entry] - start;
   // The clamp keeps u below 1 when rounding (or u past the table's end) would reach it.
-  return span > 0.0f ? glm::clamp((u - start) / span, 0.0f, 0.99999994f) : 0.5f;
+  const float stretched = glm::clamp((u - start) / span, 0.0f, 0.99999994f);
+  return span > 0.0f ? stretched : 0.5f;
 }
 
 // Entry k owns [cdf[k - 1], cdf[k]) (cdf[-1] = 0), so u on a boundary goes to the entry above it

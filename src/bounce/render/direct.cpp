@@ -193,10 +193,7 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
     const float ux = row.u[j].x;
     const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
     row.base[j] = entry;
-    // cdf_stretch without its branch: the entry before the first reads entry 0, masked.
-    const float start = pick(entry == 0, 0.0f, cdf[entry - uint32_t(entry != 0)]);
-    const float span = cdf[entry] - start;
-    stretched[j] = pick(span > 0.0f, glm::clamp((ux - start) / span, 0.0f, 0.99999994f), 0.5f);
+    stretched[j] = cdf_stretch(cdf, entry, ux);
     uy[j] = row.u[j].y;
   }
   BOUNCE_IVDEP
