@@ -38,9 +38,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_or_mean(const Textures& textures, int 
 
 // The material at uv. kMeanTextures: each texture's mean instead of its texels (photon hits of
 // technique `vertex`, which the seed reflects with a texture's average colour: no texel to fetch
-// from a random place in memory). Inlined for the reason texture_at is: out of line, its
-// MaterialPoint went back through memory, and a level's G-buffer took about 2 ms more at
-// 1280 x 720 (docs/benchmarks.md).
+// from a random place in memory). Inlined, as texture_at is: out of line, its MaterialPoint
+// went back through memory (a level's G-buffer at 1280 x 720: median 37.6 -> 36.0 ms over eight
+// alternated runs each; docs/benchmarks.md).
 template <bool kMeanTextures = false, typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
                                                        const Textures& textures, vec2 uv) {
