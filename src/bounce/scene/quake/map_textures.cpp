@@ -95,9 +95,7 @@ bool try_load(const Pk3Set& archives, const std::string& entry, int max_size, bo
       out.alpha.name = entry + " (alpha)";
       shrink_texture(out.alpha, max_size);
     }
-    vec3 sum(0.0f);
-    for (const vec3& t : out.texture.texels) sum += t;
-    out.average = sum / float(std::max<size_t>(out.texture.texels.size(), 1));
+    out.average = mean_texel(out.texture);
     out.found = true;
     out.source = a->path() + ":" + entry;
     return true;
