@@ -437,35 +437,61 @@ struct CpuPasses {
   // Each texel row the row reads is laid out with every texel twice (and the first and last once
   // more at the ends, where texel columns are clamped): pixel x's texel columns hx0 and hx0 + 1
   // are then entries x and x + 2, so the pixel loop reads consecutive entries and vectorises
-  // (read in place, texel columns step by half a texel per pixel).
+  // (read in place, texel columns step by half a texel per pixel). Consecutive rows share a
+  // texel row, and a thread takes its rows in order: each thread keeps the last two it laid out.
   template <typename Store>
   static void upsample_rows(const denoise::HalfUpsample& up, const Store&) {
     constexpr int kLights = Store::kLights;
     constexpr int kChannels = denoise::kHalfChannels<kLights>;
+    static std::atomic<uint64_t> calls{0};
+    const uint64_t call = ++calls;  // what a thread's laid-out rows belong to
     for_rows(up.height, [&](int y) {
       const denoise::HalfUpsample p = up;
       const Store store{p};
       const denoise::HalfUpsampleRows rows = denoise::half_upsample_rows(p, y);
       const int hw = p.half_width;
       const size_t n = 2 * size_t(hw) + 2;
-      thread_local std::vector<float> doubled;
-      doubled.resize(2 * kChannels * n);
+      struct LaidOut {
+        uint64_t call = 0;
+        size_t row = 0;
+        std::vector<float> entries;
+      };
+      thread_local std::array<LaidOut, 2> laid_out;
       const float* source[kChannels];
       denoise::half_channels<kLights>(p, source);
+      const auto holding = [&](size_t row) {
+        for (int k = 0; k < 2; ++k)
+          if (laid_out[size_t(k)].call == call && laid_out[size_t(k)].row == row) return k;
+        return -1;
+      };
       const float* planes[2][kChannels];
-      for (int dy = 0; dy < 2; ++dy)
-        for (int c = 0; c < kChannels; ++c) {
-          float* d = doubled.data() + size_t(dy * kChannels + c) * n;
-          const float* t = source[c] + rows.row[dy];
-          BOUNCE_IVDEP
-          for (int m = 0; m < hw; ++m) {
-            d[1 + 2 * m] = t[m];
-            d[2 + 2 * m] = t[m];
+      int kept = -1;  // the slot the first texel row took
+      for (int dy = 0; dy < 2; ++dy) {
+        const size_t row = rows.row[dy];
+        int slot = holding(row);
+        if (slot < 0) {
+          // Not the slot the first texel row took, nor the one holding the second.
+          slot = dy == 1 ? 1 - kept : (holding(rows.row[1]) == 0 ? 1 : 0);
+          LaidOut& l = laid_out[size_t(slot)];
+          l.call = call;
+          l.row = row;
+          l.entries.resize(kChannels * n);
+          for (int c = 0; c < kChannels; ++c) {
+            float* d = l.entries.data() + size_t(c) * n;
+            const float* t = source[c] + row;
+            BOUNCE_IVDEP
+            for (int m = 0; m < hw; ++m) {
+              d[1 + 2 * m] = t[m];
+              d[2 + 2 * m] = t[m];
+            }
+            d[0] = t[0];
+            d[n - 1] = t[hw - 1];
           }
-          d[0] = t[0];
-          d[n - 1] = t[hw - 1];
-          planes[dy][c] = d;
         }
+        if (dy == 0) kept = slot;
+        for (int c = 0; c < kChannels; ++c)
+          planes[dy][c] = laid_out[size_t(slot)].entries.data() + size_t(c) * n;
+      }
       const float* const* row0 = planes[0];
       const float* const* row1 = planes[1];
       BOUNCE_IVDEP
