@@ -6,6 +6,7 @@
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_data.h"
 #include "checker_texture.h"
+#include "hand_built_scenes.h"
 
 namespace bounce {
 namespace {
@@ -19,13 +20,10 @@ Scene checker_quad() {
   m.albedo = vec3(0.5f);
   m.albedo_texture = 0;
   s.materials.push_back(m);
-  Mesh quad;
-  quad.name = "quad";
-  quad.positions = {vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(1.0f, 1.0f, 0.0f),
-                    vec3(0.0f, 1.0f, 0.0f)};
+  // Corners (0,0,0), (1,0,0), (1,1,0), (0,1,0), with the same texture coordinates.
+  Mesh quad =
+      scene_test::quad_mesh("quad", vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), 0);
   quad.uvs = {vec2(0.0f), vec2(1.0f, 0.0f), vec2(1.0f), vec2(0.0f, 1.0f)};
-  quad.triangles = {uvec3(0, 1, 2), uvec3(0, 2, 3)};
-  quad.materials = {0, 0};
   s.meshes.push_back(quad);
   s.finalize();
   return s;
