@@ -75,6 +75,8 @@ void expect_view_matches_scene(const Scene& scene, const SceneView& view) {
   Pcg32 rng(2);
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
     ASSERT_EQ(view.meshes[m].triangle_count, scene.meshes[m].triangle_count());
+    // SceneData makes each triangle's unit normal once; the scene's surface_at computes it.
+    ASSERT_NE(view.meshes[m].face_normals, nullptr);
     for (uint32_t t = 0; t < scene.meshes[m].triangle_count(); ++t) {
       EXPECT_EQ(view.triangle_id(m, t), scene.triangle_offsets[m] + t);
       for (const vec3 direction : {vec3(0.3f, -0.2f, 1.0f), vec3(-0.1f, 0.4f, -1.0f)}) {
@@ -148,6 +150,7 @@ TEST(SceneData, RefreshFollowsMovedVerticesLightsAndMaterials) {
   const uint32_t quad = uint32_t(scene.meshes.size() - 2);
   const vec3* positions_before = data.view().meshes[quad].positions;
   for (vec3& p : scene.meshes[quad].positions) p += vec3(0.01f, 0.02f, 0.0f);
+  scene.meshes[quad].positions[2].z += 0.1f;  // tilts both triangles: their normals must follow
   for (vec3& n : scene.meshes[quad].normals) n = glm::normalize(n + vec3(0.1f, 0.0f, 0.0f));
   scene.lights[0].position.x += 0.05f;
   scene.materials[0].albedo = vec3(0.1f, 0.2f, 0.3f);

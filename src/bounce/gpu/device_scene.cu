@@ -29,6 +29,7 @@ void DeviceScene::upload_meshes(const SceneData& data) {
     m.triangles = relocate(m.triangles, a.triangles, triangles_);
     moving_ |= m.previous_positions != nullptr;
     m.materials = relocate(m.materials, a.triangle_materials, triangle_materials_);
+    m.face_normals = nullptr;  // a GPU computes each from the corners it loads anyway
   }
   meshes_.upload(meshes);
   view_.meshes = meshes_.data();

@@ -24,8 +24,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
 
   SurfaceHit s;
   s.position = b0 * mesh.positions[tri.x] + b1 * mesh.positions[tri.y] + b2 * mesh.positions[tri.z];
-  const vec3 face =
-      triangle_unit_normal(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
+  const vec3 face = mesh.unit_face_normal(hit.triangle, tri);
   const bool front = glm::dot(face, direction) < 0.0f;
   s.geometric_normal = front ? face : -face;
   // The shading normal as the file has it (interpolated, else the face's), turned to the

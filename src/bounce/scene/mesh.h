@@ -56,6 +56,17 @@ struct MeshView {
   // Where the vertices were before the last refresh moved them (the previous frame's pose), or
   // null when the mesh did not move: what motion vectors of moving objects are made from.
   const vec3* previous_positions = nullptr;
+  // Per triangle, triangle_unit_normal of its corners made once (SceneData), or null: then each
+  // lookup computes it. A division and a square root in a dependent chain were a fifth of the
+  // G-buffer kernel's samples (docs/benchmarks.md).
+  const vec3* face_normals = nullptr;
+
+  // Triangle t's unit normal by its winding; `tri` is triangles[t].
+  BOUNCE_HD vec3 unit_face_normal(uint32_t t, uvec3 tri) const {
+    return face_normals
+               ? face_normals[t]
+               : triangle_unit_normal(positions[tri.x], positions[tri.y], positions[tri.z]);
+  }
 
   BOUNCE_HD vec3 face_normal_area2(uint32_t t) const {
     const uvec3 i = triangles[t];

@@ -36,6 +36,7 @@ void SceneData::build(const Scene& scene) {
   normals_.resize(normals);
   uvs_.resize(uvs);
   triangles_.resize(triangles);
+  face_normals_.resize(triangles);
   triangle_materials_.resize(triangles);
   for (uint32_t m = 0; m < mesh_count; ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -104,6 +105,9 @@ void SceneData::copy_vertices(const Scene& scene, uint32_t m) {
   const MeshRange& r = ranges_[m];
   std::copy(mesh.positions.begin(), mesh.positions.end(), positions_.begin() + r.first_vertex);
   std::copy(mesh.normals.begin(), mesh.normals.end(), normals_.begin() + r.first_normal);
+  vec3* face = face_normals_.data() + r.first_triangle;
+  for (const uvec3& t : mesh.triangles)
+    *face++ = triangle_unit_normal(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
 }
 
 void SceneData::copy_small_arrays(const Scene& scene) {
@@ -151,7 +155,8 @@ void SceneData::point_meshes() {
                   triangle_materials_.data() + r.first_triangle,
                   r.vertex_count,
                   r.triangle_count,
-                  moved_[m] ? previous_positions_.data() + r.first_vertex : nullptr};
+                  moved_[m] ? previous_positions_.data() + r.first_vertex : nullptr,
+                  face_normals_.data() + r.first_triangle};
   }
 }
 

@@ -94,6 +94,7 @@ class SceneData {
   std::vector<vec3> normals_;
   std::vector<vec2> uvs_;
   std::vector<uvec3> triangles_;
+  std::vector<vec3> face_normals_;  // per triangle, unit: follows the positions
   std::vector<uint32_t> triangle_materials_;
   std::vector<uint32_t> triangle_offsets_;
   std::vector<MaterialRecord> materials_;
