@@ -32,8 +32,9 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   vec3 normal = face;
   if (mesh.normals) {
     const vec3 n = b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] + b2 * mesh.normals[tri.z];
+    // One division, not glm's three (vec3 / float): they were a tenth of the G-buffer kernel.
     const float len = glm::length(n);
-    if (len > 0.0f) normal = n / len;
+    if (len > 0.0f) normal = n * (1.0f / len);
   }
   vec2 uv(0.0f);
   if (mesh.uvs) {
@@ -44,7 +45,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
                       mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z], normal, frame)) {
       const vec3 mapped = frame.to_world(tangent_space_normal(material, textures, uv));
       const float len = glm::length(mapped);
-      if (len > 0.0f) normal = mapped / len;
+      if (len > 0.0f) normal = mapped * (1.0f / len);
     }
   }
   // Interpolated normals live on the same side as the face normal we shade from.
