@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <memory>
 #include <span>
 #include <vector>
@@ -9,8 +10,6 @@
 #include "bounce/core/parallel.h"
 
 namespace bounce {
-
-namespace {
 
 // Shadow rays wait here with the radiance they carry until a batch is traced at once: the
 // Tracer's stream call is what makes this stage fast on the CPU.
@@ -42,7 +41,9 @@ struct ShadowBatch {
   }
 };
 
-constexpr int kRowWidth = 32;
+namespace {
+
+constexpr int kRowWidth = kDirectTileMax;  // the row loop's tiles are this wide and tall
 
 // A vec3 for each pixel of a row as three planes: the row loops then load and store whole
 // vectors (from an array of vec3, GCC gathers every component with shuffles).
@@ -251,102 +252,140 @@ bool direct_takes_rows(const SceneView& scene, const LightPickerView& lights,
   return true;
 }
 
+DirectPass::DirectPass(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
+                       const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out)
+    : scene_(scene),
+      lights_(lights),
+      tracer_(tracer),
+      view_(g.view()),
+      eye_(eye),
+      settings_(settings),
+      pixels_(out.pixels().data()),
+      rows_(direct_takes_rows(scene, lights, settings)),
+      batches_(std::make_unique<tbb::enumerable_thread_specific<ShadowBatch>>()) {
+  if (!rows_) return;
+  punctual_.resize(scene.light_count);
+  for (uint32_t l = 0; l < scene.light_count; ++l) punctual_[l] = punctual_lane(scene.lights[l]);
+  corners_.resize(scene.area_light_count);
+  for (uint32_t a = 0; a < scene.area_light_count; ++a)
+    corners_[a] = area_light_corners(scene, scene.area_lights[a]);
+  // With one sample per pixel (one light, one sample: the Cornell box in real time) the
+  // selection keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
+  select_ = settings.one_shadow_ray &&
+            scene.light_count + scene.area_light_count * uint32_t(settings.light_samples) > 1;
+}
+
+DirectPass::~DirectPass() = default;
+
+int DirectPass::tile() const {
+  return rows_ ? LightRow::kWidth : 8;
+}
+
+void DirectPass::run(int x0, int y0, int x1, int y1) {
+  const int t = tile();
+  for (int ty = y0; ty < y1; ty += t)
+    for (int tx = x0; tx < x1; tx += t) {
+      if (rows_)
+        row_tile(tx, ty, std::min(tx + t, x1), std::min(ty + t, y1));
+      else
+        pixel_tile(tx, ty, std::min(tx + t, x1), std::min(ty + t, y1));
+    }
+}
+
+// Per tile row and light sample: a light_lane.h lane runs across the row as vector code (for an
+// area light after a loop picks each pixel's point on it: a search in the light's triangle
+// table), then each sample goes to its pixel's selection or to the batch. Each pixel gets its
+// samples in direct_pixel's order, so the frames are the per-pixel kernel's.
+void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
+  const SceneView& scene = scene_;
+  const ConstGBufferView& view = view_;
+  const Tracer& tracer = tracer_;
+  vec3* pixels = pixels_;
+  const int n = settings_.light_samples;
+  const float inv_n = 1.0f / float(n);
+  const bool select = select_;
+  ShadowBatch& b = batches_->local();
+  LightRow row;
+  RowSurfaces surfaces;
+  RowSelection selection;
+  const int width = x1 - x0;
+  for (int y = y0; y < y1; ++y) {
+    const size_t i0 = view.index(x0, y);
+    // The row's samples of one light, from `row`, to their selections or the batch.
+    auto hand_off = [&] {
+      if (select) {
+        selection.offer(row, width);
+        return;
+      }
+      for (int j = 0; j < width; ++j) {
+        const vec3 radiance = row.radiance[j];
+        if (max_component(radiance) > 0.0f)
+          b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
+                uint32_t(i0) + uint32_t(j), tracer, pixels);
+      }
+    };
+    for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
+    if (select) selection.start(uint32_t(i0), width, settings_);
+    const bool glossy = surfaces.load(view, i0, width, eye_);
+    for (const PunctualLane& light : punctual_) {
+      if (glossy)
+        shade_punctual_row<true>(surfaces, width, light, row);
+      else
+        shade_punctual_row<false>(surfaces, width, light, row);
+      hand_off();
+    }
+    for (uint32_t a = 0; a < scene.area_light_count; ++a) {
+      const AreaLightView& light = scene.area_lights[a];
+      for (int j = 0; j < width; ++j)
+        row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
+                                       settings_.frame, settings_.seed);
+      for (int k = 0; k < n; ++k) {
+        pick_area_light_row(light, corners_[a].data(), k, n, width, row);
+        if (glossy)
+          shade_area_row<true>(surfaces, width, light, inv_n, row);
+        else
+          shade_area_row<false>(surfaces, width, light, inv_n, row);
+        hand_off();
+      }
+    }
+    // Each pixel's kept sample, from the origin every lane shaded it from.
+    if (select)
+      for (int j = 0; j < width; ++j)
+        if (selection.kept[j] > 0.0f)
+          b.add(shadow_ray(surfaces.origin[j], selection.wi[j], selection.distance[j]),
+                ShadowSelection::weighted(selection.radiance[j], selection.kept[j],
+                                          selection.total[j]),
+                uint32_t(i0) + uint32_t(j), tracer, pixels);
+  }
+  b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
+}
+
+void DirectPass::pixel_tile(int x0, int y0, int x1, int y1) {
+  ShadowBatch& b = batches_->local();
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const uint32_t i = uint32_t(view_.index(x, y));
+      pixels_[i] = view_.emission[i];  // before the samples: a full batch adds to it at once
+      auto shadow = [&](const Ray& ray, vec3 radiance) {
+        b.add(ray, radiance, i, tracer_, pixels_);
+      };
+      direct_light_pixel(scene_, lights_, view_, i, eye_, settings_, shadow);
+    }
+  b.flush(tracer_, pixels_);
+}
+
+uint64_t DirectPass::shadow_rays() const {
+  uint64_t total = 0;
+  for (const ShadowBatch& b : *batches_) total += b.traced;
+  return total;
+}
+
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
-  const ConstGBufferView view = g.view();
-  vec3* pixels = out.pixels().data();
-  tbb::enumerable_thread_specific<ShadowBatch> batches;
-  if (direct_takes_rows(scene, lights, settings)) {
-    // Per tile row and light sample: a light_lane.h lane runs across the row as vector code
-    // (for an area light after a scalar loop picks each pixel's point on it: a search in the
-    // light's triangle table), then each sample goes to its pixel's selection or to the batch.
-    // Each pixel gets its samples in direct_pixel's order, so the frames are the per-pixel
-    // kernel's.
-    const int n = settings.light_samples;
-    const float inv_n = 1.0f / float(n);
-    std::vector<PunctualLane> punctual(scene.light_count);
-    for (uint32_t l = 0; l < scene.light_count; ++l) punctual[l] = punctual_lane(scene.lights[l]);
-    std::vector<std::vector<float>> corners(scene.area_light_count);
-    for (uint32_t a = 0; a < scene.area_light_count; ++a)
-      corners[a] = area_light_corners(scene, scene.area_lights[a]);
-    // With one sample per pixel (one light, one sample: the Cornell box in real time) the
-    // selection keeps that sample unchanged (ShadowSelection's first offer), so it is skipped.
-    const bool select =
-        settings.one_shadow_ray && scene.light_count + scene.area_light_count * uint32_t(n) > 1;
-    parallel_for_tiles(g.width, g.height, LightRow::kWidth, [&](int x0, int y0, int x1, int y1) {
-      ShadowBatch& b = batches.local();
-      LightRow row;
-      RowSurfaces surfaces;
-      RowSelection selection;
-      const int width = x1 - x0;
-      for (int y = y0; y < y1; ++y) {
-        const size_t i0 = view.index(x0, y);
-        // The row's samples of one light, from `row`, to their selections or the batch.
-        auto hand_off = [&] {
-          if (select) {
-            selection.offer(row, width);
-            return;
-          }
-          for (int j = 0; j < width; ++j) {
-            const vec3 radiance = row.radiance[j];
-            if (max_component(radiance) > 0.0f)
-              b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
-                    uint32_t(i0) + uint32_t(j), tracer, pixels);
-          }
-        };
-        for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
-        if (select) selection.start(uint32_t(i0), width, settings);
-        const bool glossy = surfaces.load(view, i0, width, eye);
-        for (const PunctualLane& light : punctual) {
-          if (glossy)
-            shade_punctual_row<true>(surfaces, width, light, row);
-          else
-            shade_punctual_row<false>(surfaces, width, light, row);
-          hand_off();
-        }
-        for (uint32_t a = 0; a < scene.area_light_count; ++a) {
-          const AreaLightView& light = scene.area_lights[a];
-          for (int j = 0; j < width; ++j)
-            row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
-                                           settings.frame, settings.seed);
-          for (int k = 0; k < n; ++k) {
-            pick_area_light_row(light, corners[a].data(), k, n, width, row);
-            if (glossy)
-              shade_area_row<true>(surfaces, width, light, inv_n, row);
-            else
-              shade_area_row<false>(surfaces, width, light, inv_n, row);
-            hand_off();
-          }
-        }
-        // Each pixel's kept sample, from the origin every lane shaded it from.
-        if (select)
-          for (int j = 0; j < width; ++j)
-            if (selection.kept[j] > 0.0f)
-              b.add(shadow_ray(surfaces.origin[j], selection.wi[j], selection.distance[j]),
-                    ShadowSelection::weighted(selection.radiance[j], selection.kept[j],
-                                              selection.total[j]),
-                    uint32_t(i0) + uint32_t(j), tracer, pixels);
-      }
-      b.flush(tracer, pixels);
-    });
-  } else {
-    parallel_for_tiles(g.width, g.height, 8, [&](int x0, int y0, int x1, int y1) {
-      ShadowBatch& b = batches.local();
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-          const uint32_t i = uint32_t(view.index(x, y));
-          pixels[i] = view.emission[i];  // before the samples: a full batch adds to it at once
-          auto shadow = [&](const Ray& ray, vec3 radiance) {
-            b.add(ray, radiance, i, tracer, pixels);
-          };
-          direct_light_pixel(scene, lights, view, i, eye, settings, shadow);
-        }
-      b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
-    });
-  }
-  uint64_t total = 0;
-  for (const ShadowBatch& b : batches) total += b.traced;
-  return total;
+  DirectPass pass(scene, lights, tracer, g, eye, settings, out);
+  parallel_for_tiles(g.width, g.height, pass.tile(),
+                     [&](int x0, int y0, int x1, int y1) { pass.run(x0, y0, x1, y1); });
+  return pass.shadow_rays();
 }
 
 }  // namespace bounce

@@ -6,7 +6,11 @@
 // the commonest scenes runs the light samples across rows of pixels (direct_takes_rows).
 #pragma once
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "bounce/core/image.h"
 #include "bounce/render/direct_kernel.h"
@@ -20,6 +24,47 @@ namespace bounce {
 // `lights` picks lights by power for the resampled path (LightPicker::view()).
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
+
+// The side of DirectPass's largest tiles (its tiles are this or 8 pixels a side): a block whose
+// corners are multiples of it is cut into the tiles compute_direct runs.
+inline constexpr int kDirectTileMax = 32;
+
+struct ShadowBatch;  // direct.cpp: shadow rays traced a batch at a time
+
+// compute_direct for one frame, a block of pixels at a time: compute_direct runs its tiles in
+// parallel; the renderer runs each block right after that block's G-buffer
+// (build_gbuffer_and_direct). Blocks of different threads must not overlap.
+class DirectPass {
+ public:
+  DirectPass(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
+             const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
+  ~DirectPass();
+  DirectPass(const DirectPass&) = delete;
+  DirectPass& operator=(const DirectPass&) = delete;
+
+  // The side of the square tiles the pass works in (kDirectTileMax or 8).
+  int tile() const;
+  // The pixels of [x0, x1) x [y0, y1), tile by tile, on the calling thread.
+  void run(int x0, int y0, int x1, int y1);
+  uint64_t shadow_rays() const;  // traced so far, by every thread
+
+ private:
+  void row_tile(int x0, int y0, int x1, int y1);
+  void pixel_tile(int x0, int y0, int x1, int y1);
+
+  const SceneView& scene_;
+  const LightPickerView& lights_;
+  const Tracer& tracer_;
+  ConstGBufferView view_;
+  vec3 eye_;
+  DirectSettings settings_;
+  vec3* pixels_;
+  bool rows_;            // direct_takes_rows
+  bool select_ = false;  // one shadow ray a pixel among several samples
+  std::vector<PunctualLane> punctual_;
+  std::vector<std::vector<float>> corners_;  // each area light's (area_light_corners)
+  std::unique_ptr<tbb::enumerable_thread_specific<ShadowBatch>> batches_;
+};
 
 // Whether compute_direct runs the light samples across rows of pixels as vector code
 // (light_lane.h) rather than direct_light_pixel per pixel: every light is looped over (not

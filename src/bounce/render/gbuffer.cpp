@@ -28,30 +28,36 @@ void GBuffer::resize(int w, int h) {
   motion.assign(n, vec2(0.0f));
 }
 
-uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
-                       vec2 subpixel, GBuffer& g) {
-  // Rays go to the tracer 64 neighbouring pixels of a row at a time: coherent packets, and the
-  // G-buffer's dozen arrays are written along their rows (in 8 x 8 tiles, a tile row is 96 bytes
-  // of each array: the writes took twice as long, and the stage about 2.5 ms more on a level at
-  // 640 x 360; docs/benchmarks.md).
-  constexpr int kRun = 64;
-  const GBufferView view = g.view();
-  parallel_for_tiles(g.width, g.height, kRun, 1, [&](int x0, int y0, int x1, int y1) {
-    std::array<Ray, kRun> rays;
-    std::array<Hit, kRun> hits;
-    size_t n = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
+// Rays go to the tracer 64 neighbouring pixels of a row at a time: coherent packets, and the
+// G-buffer's dozen arrays are written along their rows (in 8 x 8 tiles, a tile row is 96 bytes
+// of each array: the writes took twice as long, and the stage about 2.5 ms more on a level at
+// 640 x 360; docs/benchmarks.md).
+void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
+                         vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1) {
+  std::array<Ray, kGBufferRun> rays;
+  std::array<Hit, kGBufferRun> hits;
+  for (int y = y0; y < y1; ++y)
+    for (int run = x0; run < x1; run += kGBufferRun) {
+      const int end = std::min(run + kGBufferRun, x1);
+      size_t n = 0;
+      for (int x = run; x < end; ++x) {
         Ray& r = rays[n++];
         r.origin = camera.origin;
         r.direction = camera.direction(float(x) + subpixel.x, float(y) + subpixel.y);
         r.tmin = 0.0f;
       }
-    tracer.intersect(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n), true);
-    n = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x, ++n)
-        gbuffer_pixel(scene, camera.forward, rays[n], hits[n], view.index(x, y), view);
+      tracer.intersect(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n), true);
+      n = 0;
+      for (int x = run; x < end; ++x, ++n)
+        gbuffer_pixel(scene, camera.forward, rays[n], hits[n], g.index(x, y), g);
+    }
+}
+
+uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
+                       vec2 subpixel, GBuffer& g) {
+  const GBufferView view = g.view();
+  parallel_for_tiles(g.width, g.height, kGBufferRun, 1, [&](int x0, int y0, int x1, int y1) {
+    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1);
   });
   return uint64_t(g.width) * g.height;
 }

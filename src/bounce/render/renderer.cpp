@@ -7,6 +7,7 @@
 #include "bounce/core/qmc.h"
 #include "bounce/core/tonemap.h"
 #include "bounce/render/direct.h"
+#include "bounce/render/gbuffer_direct.h"
 
 namespace bounce {
 
@@ -164,18 +165,24 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
                                        settings.accumulate, frame_index_, f.times, f.technique});
   }
   {
-    ScopedStage stage(f.times, "gbuffer");
+    // One pass: each block's direct light right after its G-buffer, from the cache.
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
-    f.primary_rays = build_gbuffer(scene_data_.view(), tracer_, rays, subpixel, f.gbuffer);
-    compute_motion(scene_data_.view(), rays, previous, f.gbuffer);
+    if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
+    const GBufferAndDirect pass =
+        build_gbuffer_and_direct(scene_data_.view(), lights_.view(), tracer_, rays, subpixel,
+                                 direct_settings(settings, frame_index_), f.gbuffer, f.direct);
+    f.primary_rays = pass.primary_rays;
+    f.shadow_rays = pass.shadow_rays;
+    f.times.add("gbuffer", pass.gbuffer_ms);
+    f.times.add("direct", pass.direct_ms);
   }
   {
+    ScopedStage stage(f.times, "gbuffer");
+    compute_motion(scene_data_.view(), rays, previous, f.gbuffer);
+  }
+  if (average) {
     ScopedStage stage(f.times, "direct");
-    if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
-    const DirectSettings direct = direct_settings(settings, frame_index_);
-    f.shadow_rays = compute_direct(scene_data_.view(), lights_.view(), tracer_, f.gbuffer,
-                                   rays.origin, direct, f.direct);
-    if (average) direct_average_.add(f.direct, settings.accumulate, rest);
+    direct_average_.add(f.direct, settings.accumulate, rest);
   }
   const bool indirect = technique_->has_indirect();
   if (indirect) {

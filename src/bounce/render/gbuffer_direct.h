@@ -1,0 +1,35 @@
+// The G-buffer and direct light in one parallel pass over blocks of the frame: each block's
+// direct light runs right after its G-buffer, on the same core, and reads the G-buffer's
+// 104 bytes a pixel from that core's cache instead of from memory (at 1280 x 720 the G-buffer is
+// 96 MB, three times the last-level cache). The frames are those of build_gbuffer followed by
+// compute_direct.
+#pragma once
+
+#include <cstdint>
+
+#include "bounce/core/image.h"
+#include "bounce/render/direct.h"
+#include "bounce/render/gbuffer.h"
+#include "bounce/render/light_picker.h"
+#include "bounce/scene/camera.h"
+#include "bounce/scene/scene_view.h"
+#include "bounce/trace/tracer.h"
+
+namespace bounce {
+
+struct GBufferAndDirect {
+  uint64_t primary_rays = 0;
+  uint64_t shadow_rays = 0;
+  // The pass's wall time shared between the two by the time the threads spent in each.
+  double gbuffer_ms = 0.0;
+  double direct_ms = 0.0;
+};
+
+// build_gbuffer (all but the motion: compute_motion) and compute_direct, block by block. `g`
+// and `direct` are already sized.
+GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
+                                          const Tracer& tracer, const CameraRays& camera,
+                                          vec2 subpixel, const DirectSettings& settings, GBuffer& g,
+                                          Image& direct);
+
+}  // namespace bounce
