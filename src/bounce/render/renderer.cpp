@@ -190,8 +190,9 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     // Reused frame to frame (a fresh 3 MB image each frame costs page faults), zeroed.
     if (f.indirect.width() != w || f.indirect.height() != h)
       f.indirect = Image(w, h);
-    else
-      std::fill(f.indirect.pixels().begin(), f.indirect.pixels().end(), vec3(0.0f));
+    else  // on every core: 11 MB at 1280 x 720 took one core about a millisecond
+      parallel_for(
+          f.indirect.pixel_count(), [&](size_t i) { f.indirect.pixels()[i] = vec3(0.0f); }, 16384);
     const FrameContext context{scene_, scene_data_.view(),  tracer_,      f.gbuffer, rays,
                                change, settings.accumulate, frame_index_, f.times,   f.technique};
     technique_->indirect(context, f.indirect);
