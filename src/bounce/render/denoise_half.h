@@ -254,9 +254,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE void half_channels(const HalfUpsample& p,
 // Full-resolution pixel x of row y (rows from half_upsample_rows), for the first kLights lights.
 // texel(dx, dy) gives the planes (half_channels' order) and index of texel column hx0 + dx in
 // texel row dy, hx0 as below: the launcher decides how texels are laid out. store(i, light)
-// puts the result (UpsampleToPlanes, UpsampleRemodulated).
-template <int kLights, typename Texel, typename Store>
-BOUNCE_HD BOUNCE_LANE_INLINE void upsample_from(const HalfUpsample& p, const HalfUpsampleRows& rows,
+// puts the result (UpsampleToPlanes, UpsampleRemodulated). Returns whether the texels represent
+// the pixel; where they do not, its light is the unfiltered light at full resolution
+// (upsample_fallback), or without kFallback whatever: the caller then stores the fallback itself.
+template <int kLights, bool kFallback = true, typename Texel, typename Store>
+BOUNCE_HD BOUNCE_LANE_INLINE bool upsample_from(const HalfUpsample& p, const HalfUpsampleRows& rows,
                                                 int x, int y, const Texel& texel,
                                                 const Store& store) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
@@ -297,10 +299,22 @@ BOUNCE_HD BOUNCE_LANE_INLINE void upsample_from(const HalfUpsample& p, const Hal
   vec3 light[kLights];
   unrolled<kLights>([&](auto l) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int kL = decltype(l)::value;
-    light[kL] = vec3(represented ? r[kL] * inv : p.light[kL].r[i],
-                     represented ? g[kL] * inv : p.light[kL].g[i],
-                     represented ? b[kL] * inv : p.light[kL].b[i]);
+    light[kL] = vec3(r[kL] * inv, g[kL] * inv, b[kL] * inv);
+    if constexpr (kFallback)
+      light[kL] = vec3(represented ? light[kL].x : p.light[kL].r[i],
+                       represented ? light[kL].y : p.light[kL].g[i],
+                       represented ? light[kL].z : p.light[kL].b[i]);
   });
+  store(i, light);
+  return represented;
+}
+
+// Stores pixel i's unfiltered light: the upsample's result where no texel represents the pixel.
+template <int kLights, typename Store>
+BOUNCE_HD BOUNCE_LANE_INLINE void upsample_fallback(const HalfUpsample& p, size_t i,
+                                                    const Store& store) {
+  vec3 light[kLights];
+  for (int l = 0; l < kLights; ++l) light[l] = p.light[l].get(i);
   store(i, light);
 }
 
