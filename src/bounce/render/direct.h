@@ -52,8 +52,8 @@ class DirectPass {
   void row_tile(int x0, int y0, int x1, int y1);
   void pixel_tile(int x0, int y0, int x1, int y1);
 
-  const SceneView& scene_;
-  const LightPickerView& lights_;
+  SceneView scene_;  // plain views, copied: the caller may pass temporaries
+  LightPickerView lights_;
   const Tracer& tracer_;
   ConstGBufferView view_;
   vec3 eye_;
