@@ -497,7 +497,7 @@ struct CpuPasses {
       // The unfiltered light is read only for the pixels no texel represents, in a second loop:
       // read for every pixel with masked loads, its planes (24 bytes a pixel, from memory at
       // 1280 x 720) were a third of this loop's time.
-      thread_local std::vector<uint32_t> missing;
+      thread_local std::vector<uint32_t> missing;  // (as bytes, GCC 12 left the loop scalar)
       missing.resize(size_t(p.width));
       uint32_t any_missing = 0;  // (a bool reduction would not vectorise)
       BOUNCE_IVDEP
