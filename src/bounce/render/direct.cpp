@@ -290,6 +290,9 @@ void DirectPass::run(int x0, int y0, int x1, int y1) {
       else
         pixel_tile(tx, ty, std::min(tx + t, x1), std::min(ty + t, y1));
     }
+  // The block's pixels are final before it ends: the rays still waiting are traced now. (A
+  // pixel's rays reach it in the order they were made, whatever the batches' bounds.)
+  batches_->local().flush(tracer_, pixels_);
 }
 
 // Per tile row and light sample: a light_lane.h lane runs across the row as vector code (for an
@@ -357,7 +360,6 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
                                           selection.total[j]),
                 uint32_t(i0) + uint32_t(j), tracer, pixels);
   }
-  b.flush(tracer, pixels);  // a tile's pixels are final before the tile ends
 }
 
 void DirectPass::pixel_tile(int x0, int y0, int x1, int y1) {
@@ -371,7 +373,6 @@ void DirectPass::pixel_tile(int x0, int y0, int x1, int y1) {
       };
       direct_light_pixel(scene_, lights_, view_, i, eye_, settings_, shadow);
     }
-  b.flush(tracer_, pixels_);
 }
 
 uint64_t DirectPass::shadow_rays() const {

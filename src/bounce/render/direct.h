@@ -25,14 +25,15 @@ namespace bounce {
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
 
-// The side of DirectPass's largest tiles (its tiles are this or 8 pixels a side): a block whose
-// corners are multiples of it is cut into the tiles compute_direct runs.
+// The side of DirectPass's largest tiles (its tiles are this or 8 pixels a side, cut at a
+// block's edges). A pixel's light does not depend on the tiles: its samples and shadow rays are
+// its own, and its rays' light reaches it in the order the rays were made.
 inline constexpr int kDirectTileMax = 32;
 
 struct ShadowBatch;  // direct.cpp: shadow rays traced a batch at a time
 
 // compute_direct for one frame, a block of pixels at a time: compute_direct runs its tiles in
-// parallel; the renderer runs each block right after that block's G-buffer
+// parallel; the renderer runs each band of rows right after that band's G-buffer
 // (build_gbuffer_and_direct). Blocks of different threads must not overlap.
 class DirectPass {
  public:
@@ -44,7 +45,8 @@ class DirectPass {
 
   // The side of the square tiles the pass works in (kDirectTileMax or 8).
   int tile() const;
-  // The pixels of [x0, x1) x [y0, y1), tile by tile, on the calling thread.
+  // The pixels of [x0, x1) x [y0, y1), tile by tile, on the calling thread; final when it
+  // returns.
   void run(int x0, int y0, int x1, int y1);
   uint64_t shadow_rays() const;  // traced so far, by every thread
 

@@ -11,13 +11,11 @@ namespace bounce {
 
 namespace {
 
-// A block is 128 x 32 pixels: two of the G-buffer's 64-pixel runs wide and one of the direct
-// stage's 32-pixel tiles tall, so both see the runs and tiles of their own passes. Its G-buffer
-// (about 430 KB) stays in a core's 2 MB L2 until the direct light has read it.
-constexpr int kBlockWidth = 2 * kGBufferRun;
-constexpr int kBlockHeight = kDirectTileMax;
-
-static_assert(kBlockWidth % kDirectTileMax == 0 && kDirectTileMax % 8 == 0);
+// A band is this many whole rows of the frame: at 1280 pixels a row its G-buffer is about
+// 530 KB (1.6 MB at 3840), within a core's 2 MB L2 until the direct light has read it, and the
+// G-buffer's twelve arrays are written in whole rows (in blocks of 128 x 32 pixels, 1.5 KB
+// pieces, its writes cost 1-2 ms more at 1280 x 720; docs/benchmarks.md).
+constexpr int kBandRows = 4;
 
 int64_t nanoseconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t)
@@ -34,16 +32,15 @@ GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPic
   DirectPass pass(scene, lights, tracer, g, camera.origin, settings, direct);
   const GBufferView view = g.view();
   std::atomic<int64_t> gbuffer_ns{0}, direct_ns{0};
-  parallel_for_tiles(g.width, g.height, kBlockWidth, kBlockHeight,
-                     [&](int x0, int y0, int x1, int y1) {
-                       const auto start = std::chrono::steady_clock::now();
-                       build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1);
-                       const int64_t surfaces = nanoseconds_since(start);
-                       pass.run(x0, y0, x1, y1);
-                       const int64_t both = nanoseconds_since(start);
-                       gbuffer_ns += surfaces;
-                       direct_ns += both - surfaces;
-                     });
+  parallel_for_tiles(g.width, g.height, g.width, kBandRows, [&](int x0, int y0, int x1, int y1) {
+    const auto start = std::chrono::steady_clock::now();
+    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1);
+    const int64_t surfaces = nanoseconds_since(start);
+    pass.run(x0, y0, x1, y1);
+    const int64_t both = nanoseconds_since(start);
+    gbuffer_ns += surfaces;
+    direct_ns += both - surfaces;
+  });
   GBufferAndDirect out;
   out.primary_rays = uint64_t(g.width) * uint64_t(g.height);
   out.shadow_rays = pass.shadow_rays();

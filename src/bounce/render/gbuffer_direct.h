@@ -1,4 +1,4 @@
-// The G-buffer and direct light in one parallel pass over blocks of the frame: each block's
+// The G-buffer and direct light in one parallel pass over bands of the frame: each band's
 // direct light runs right after its G-buffer, on the same core, and reads the G-buffer's
 // 104 bytes a pixel from that core's cache instead of from memory (at 1280 x 720 the G-buffer is
 // 96 MB, three times the last-level cache). The frames are those of build_gbuffer followed by
@@ -25,7 +25,7 @@ struct GBufferAndDirect {
   double direct_ms = 0.0;
 };
 
-// build_gbuffer (all but the motion: compute_motion) and compute_direct, block by block. `g`
+// build_gbuffer (all but the motion: compute_motion) and compute_direct, band by band. `g`
 // and `direct` are already sized.
 GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
                                           const Tracer& tracer, const CameraRays& camera,
