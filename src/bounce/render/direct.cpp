@@ -43,7 +43,7 @@ struct ShadowBatch {
 
 namespace {
 
-constexpr int kRowWidth = kDirectTileMax;  // the row loop's tiles are this wide and tall
+constexpr int kRowWidth = 32;  // the row loop's tiles are this wide and tall
 
 // A vec3 for each pixel of a row as three planes: the row loops then load and store whole
 // vectors (from an array of vec3, GCC gathers every component with shuffles).

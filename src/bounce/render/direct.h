@@ -25,11 +25,6 @@ namespace bounce {
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
                         const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
 
-// The side of DirectPass's largest tiles (its tiles are this or 8 pixels a side, cut at a
-// block's edges). A pixel's light does not depend on the tiles: its samples and shadow rays are
-// its own, and its rays' light reaches it in the order the rays were made.
-inline constexpr int kDirectTileMax = 32;
-
 struct ShadowBatch;  // direct.cpp: shadow rays traced a batch at a time
 
 // compute_direct for one frame, a block of pixels at a time: compute_direct runs its tiles in
@@ -43,10 +38,11 @@ class DirectPass {
   DirectPass(const DirectPass&) = delete;
   DirectPass& operator=(const DirectPass&) = delete;
 
-  // The side of the square tiles the pass works in (kDirectTileMax or 8).
+  // The side of the square tiles the pass works in (32 for the row loop, else 8).
   int tile() const;
   // The pixels of [x0, x1) x [y0, y1), tile by tile, on the calling thread; final when it
-  // returns.
+  // returns. A pixel's light does not depend on the block or the tiles: its samples and shadow
+  // rays are its own, and their light reaches it in the order the rays were made.
   void run(int x0, int y0, int x1, int y1);
   uint64_t shadow_rays() const;  // traced so far, by every thread
 

@@ -28,6 +28,12 @@ void GBuffer::resize(int w, int h) {
   motion.assign(n, vec2(0.0f));
 }
 
+namespace {
+
+constexpr int kGBufferRun = 64;
+
+}  // namespace
+
 // Rays go to the tracer 64 neighbouring pixels of a row at a time: coherent packets, and the
 // G-buffer's dozen arrays are written along their rows (in 8 x 8 tiles, a tile row is 96 bytes
 // of each array: the writes took twice as long, and the stage about 2.5 ms more on a level at

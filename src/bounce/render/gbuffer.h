@@ -76,9 +76,7 @@ namespace bounce {
 uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
                        vec2 subpixel, GBuffer& g);
 // The pixels of [x0, x1) x [y0, y1) of build_gbuffer's work, on the calling thread, in runs of
-// kGBufferRun pixels along each row (a block whose x0 is a multiple of it traces the rays
-// build_gbuffer traces together).
-inline constexpr int kGBufferRun = 64;
+// 64 pixels along each row.
 void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
                          vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1);
 // The same from the Scene itself, for callers without a SceneData (tests, benchmarks): copies

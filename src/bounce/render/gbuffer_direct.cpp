@@ -1,6 +1,5 @@
 #include "bounce/render/gbuffer_direct.h"
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 
