@@ -58,6 +58,7 @@ FrameSettings FrameOptions::settings() const {
   s.exposure_ev = exposure_ev;
   s.seed = seed;
   s.denoise = denoise;
+  s.raster_primary = !trace_primary;
   return s;
 }
 
@@ -142,6 +143,9 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
       ->check(CLI::Range(-kMaxExposureEv, kMaxExposureEv))
       ->capture_default_str();
   command.add_option("--seed", o.seed, "Seed of the sample patterns")->capture_default_str();
+  command.add_flag("--trace-primary", o.trace_primary,
+                   "Find each pixel's surface with a traced primary ray instead of rasterising "
+                   "the triangles (the same surfaces up to rounding; for comparison)");
   command.add_option("--at", o.at, "Animated scenes: the animation time to pose the scene at, s")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();

@@ -40,6 +40,7 @@ struct FrameOptions {
   // Its intensity on the axis, W/sr (the viewer's 3 suits a room of metres; levels tens of
   // metres across need hundreds to a thousand).
   float flashlight_intensity = 3.0f;
+  bool trace_primary = false;  // --trace-primary: a traced ray per pixel, not the raster
 
   FrameSettings settings() const;
   // The denoiser's parameters: its defaults and the --param assignments that name them.

@@ -11,6 +11,7 @@
 #include "bounce/render/gbuffer.h"
 #include "bounce/render/gbuffer_direct.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/primary_raster.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
 #include "bounce/trace/tracer.h"
@@ -26,7 +27,8 @@ void expect_same_bytes(const std::vector<T>& a, const std::vector<T>& b, const c
 
 // A size that is not a multiple of the pass's 128 x 32 blocks nor of its tiles, so partial
 // blocks and tiles at the right and bottom edges are covered.
-void expect_fused_pass_equals_the_stages(const Scene& scene, bool rows) {
+// With `rasterise`, both take their primary visibility from the raster (primary_raster.h).
+void expect_fused_pass_equals_the_stages(const Scene& scene, bool rows, bool rasterise = false) {
   constexpr int kWidth = 150, kHeight = 70;
   const SceneData data = SceneData::from(scene);
   const std::unique_ptr<Tracer> tracer = make_embree_tracer(scene);
@@ -38,19 +40,22 @@ void expect_fused_pass_equals_the_stages(const Scene& scene, bool rows) {
   settings.one_shadow_ray = true;
   settings.frame = 5;
   ASSERT_EQ(direct_takes_rows(data.view(), picker.view(), settings), rows);
+  PrimaryRaster raster;
+  if (rasterise) ASSERT_TRUE(raster.build(data.view(), camera, subpixel, kWidth, kHeight));
+  const PrimaryRaster* visibility = rasterise ? &raster : nullptr;
 
   GBuffer g1;
   g1.resize(kWidth, kHeight);
   Image d1(kWidth, kHeight);
-  const uint64_t primary = build_gbuffer(data.view(), *tracer, camera, subpixel, g1);
+  const uint64_t primary = build_gbuffer(data.view(), *tracer, camera, subpixel, g1, visibility);
   const uint64_t shadow =
       compute_direct(data.view(), picker.view(), *tracer, g1, camera.origin, settings, d1);
 
   GBuffer g2;
   g2.resize(kWidth, kHeight);
   Image d2(kWidth, kHeight);
-  const GBufferAndDirect fused = build_gbuffer_and_direct(data.view(), picker.view(), *tracer,
-                                                          camera, subpixel, settings, g2, d2);
+  const GBufferAndDirect fused = build_gbuffer_and_direct(
+      data.view(), picker.view(), *tracer, camera, subpixel, settings, g2, d2, {}, visibility);
 
   EXPECT_EQ(fused.primary_rays, primary);
   EXPECT_EQ(fused.shadow_rays, shadow);
@@ -79,6 +84,7 @@ TEST(GBufferAndDirect, EqualsTheTwoStagesWithTheRowLoop) {
   s.lights.push_back(Light::spot(vec3(0.3f, 0.5f, 0.2f), vec3(0, -1, 0), vec3(2.0f), 20, 30));
   s.finalize();
   expect_fused_pass_equals_the_stages(s, /*rows=*/true);
+  expect_fused_pass_equals_the_stages(s, /*rows=*/true, /*rasterise=*/true);
 }
 
 TEST(GBufferAndDirect, EqualsTheTwoStagesPixelByPixel) {
@@ -86,6 +92,7 @@ TEST(GBufferAndDirect, EqualsTheTwoStagesPixelByPixel) {
   s.lights.push_back(Light::sphere(vec3(0.3f, 0.4f, 0.3f), 0.05f, vec3(1.0f)));
   s.finalize();
   expect_fused_pass_equals_the_stages(s, /*rows=*/false);
+  expect_fused_pass_equals_the_stages(s, /*rows=*/false, /*rasterise=*/true);
 }
 
 }  // namespace

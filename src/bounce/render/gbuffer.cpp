@@ -6,6 +6,7 @@
 #include "bounce/core/parallel.h"
 #include "bounce/render/gbuffer_kernel.h"
 #include "bounce/render/motion_kernel.h"
+#include "bounce/render/primary_raster.h"
 #include "bounce/scene/scene_data.h"
 
 namespace bounce {
@@ -38,10 +39,39 @@ constexpr int kGBufferRun = 64;
 // G-buffer's dozen arrays are written along their rows (in 8 x 8 tiles, a tile row is 96 bytes
 // of each array: the writes took twice as long, and the stage about 2.5 ms more on a level at
 // 640 x 360; docs/benchmarks.md).
+namespace {
+
+// Where the raster's candidate stands for the traced ray: the ray's hit on it (or no triangle
+// where the pixel has none), with the sphere lights; false where the ray must be traced (it
+// misses its candidate, which lies within the raster's margin, or the candidate has cut-outs).
+bool hit_from_raster(const SceneView& scene, const TraceView& trace, const PrimaryRaster& raster,
+                     size_t i, const Ray& ray, Hit& hit) {
+  hit = Hit{};
+  const uint32_t c = raster.candidates()[i];
+  if (c != PrimaryRaster::kNone) {
+    const RasterTriangle& r = raster.triangles()[c];
+    const MeshView& mesh = scene.meshes[r.mesh];
+    if (scene.materials[mesh.materials[r.triangle]].has_cutouts()) return false;
+    const uvec3 tri = mesh.triangles[r.triangle];
+    if (!intersect_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
+                            ray, hit.t, hit.barycentric))
+      return false;
+    hit.mesh = r.mesh;
+    hit.triangle = r.triangle;
+  }
+  closest_sphere(trace.spheres, trace.sphere_count, ray, hit);
+  return true;
+}
+
+}  // namespace
+
 void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
-                         vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1) {
-  std::array<Ray, kGBufferRun> rays;
-  std::array<Hit, kGBufferRun> hits;
+                         vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1,
+                         const PrimaryRaster* raster) {
+  std::array<Ray, kGBufferRun> rays, traced;
+  std::array<Hit, kGBufferRun> hits, traced_hits;
+  std::array<uint32_t, kGBufferRun> traced_index;
+  const TraceView trace = raster ? tracer.view() : TraceView{};
   for (int y = y0; y < y1; ++y)
     for (int run = x0; run < x1; run += kGBufferRun) {
       const int end = std::min(run + kGBufferRun, x1);
@@ -52,7 +82,23 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
         r.direction = camera.direction(float(x) + subpixel.x, float(y) + subpixel.y);
         r.tmin = 0.0f;
       }
-      tracer.intersect(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n), true);
+      if (!raster) {
+        tracer.intersect(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n),
+                         true);
+      } else {
+        // The raster's hits, and the rays it cannot stand for traced together.
+        size_t m = 0;
+        for (size_t k = 0; k < n; ++k)
+          if (!hit_from_raster(scene, trace, *raster, g.index(run + int(k), y), rays[k], hits[k])) {
+            traced[m] = rays[k];
+            traced_index[m++] = uint32_t(k);
+          }
+        if (m > 0) {
+          tracer.intersect(std::span<const Ray>(traced.data(), m),
+                           std::span<Hit>(traced_hits.data(), m), true);
+          for (size_t k = 0; k < m; ++k) hits[traced_index[k]] = traced_hits[k];
+        }
+      }
       n = 0;
       for (int x = run; x < end; ++x, ++n)
         gbuffer_pixel(scene, camera.forward, rays[n], hits[n], g.index(x, y), g);
@@ -60,10 +106,10 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
 }
 
 uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
-                       vec2 subpixel, GBuffer& g) {
+                       vec2 subpixel, GBuffer& g, const PrimaryRaster* raster) {
   const GBufferView view = g.view();
   parallel_for_tiles(g.width, g.height, kGBufferRun, 1, [&](int x0, int y0, int x1, int y1) {
-    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1);
+    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1, raster);
   });
   return uint64_t(g.width) * g.height;
 }

@@ -70,15 +70,20 @@ struct GBuffer {
 
 namespace bounce {
 
+class PrimaryRaster;  // primary_raster.h
+
 // Fills the G-buffer (already sized) with one primary ray per pixel through sub-pixel position
 // `subpixel` in [0, 1)^2 ((0.5, 0.5) is the centre), all but its motion (compute_motion).
-// Returns the number of rays traced.
+// With `raster` (built for the same camera, sample position and size) each ray's hit comes from
+// its pixel's candidate triangle, and only the rays it cannot stand for are traced. Returns the
+// number of pixels.
 uint64_t build_gbuffer(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
-                       vec2 subpixel, GBuffer& g);
+                       vec2 subpixel, GBuffer& g, const PrimaryRaster* raster = nullptr);
 // The pixels of [x0, x1) x [y0, y1) of build_gbuffer's work, on the calling thread, in runs of
 // 64 pixels along each row.
 void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
-                         vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1);
+                         vec2 subpixel, const GBufferView& g, int x0, int y0, int x1, int y1,
+                         const PrimaryRaster* raster = nullptr);
 // The same from the Scene itself, for callers without a SceneData (tests, benchmarks): copies
 // the scene into one first.
 uint64_t build_gbuffer(const Scene& scene, const Tracer& tracer, const CameraRays& camera,

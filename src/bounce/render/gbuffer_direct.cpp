@@ -26,28 +26,35 @@ int64_t nanoseconds_since(std::chrono::steady_clock::time_point t) {
 GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
                                           const Tracer& tracer, const CameraRays& camera,
                                           vec2 subpixel, const DirectSettings& settings, GBuffer& g,
-                                          Image& direct) {
+                                          Image& direct, const AfterBand& after_band,
+                                          const PrimaryRaster* raster) {
   Stopwatch wall;
   DirectPass pass(scene, lights, tracer, g, camera.origin, settings, direct);
   const GBufferView view = g.view();
-  std::atomic<int64_t> gbuffer_ns{0}, direct_ns{0};
+  std::atomic<int64_t> gbuffer_ns{0}, direct_ns{0}, band_ns{0};
   parallel_for_tiles(g.width, g.height, g.width, kBandRows, [&](int x0, int y0, int x1, int y1) {
     const auto start = std::chrono::steady_clock::now();
-    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1);
+    build_gbuffer_block(scene, tracer, camera, subpixel, view, x0, y0, x1, y1, raster);
     const int64_t surfaces = nanoseconds_since(start);
     pass.run(x0, y0, x1, y1);
     const int64_t both = nanoseconds_since(start);
+    if (after_band) after_band(x0, y0, x1, y1);
+    const int64_t all = after_band ? nanoseconds_since(start) : both;
     gbuffer_ns += surfaces;
     direct_ns += both - surfaces;
+    band_ns += all - both;
   });
   GBufferAndDirect out;
   out.primary_rays = uint64_t(g.width) * uint64_t(g.height);
   out.shadow_rays = pass.shadow_rays();
+  // The wall time shared in proportion to the threads' time in each part.
   const double ms = wall.elapsed_ms();
-  const double busy = double(gbuffer_ns.load()) + double(direct_ns.load());
-  const double share = busy > 0.0 ? double(gbuffer_ns.load()) / busy : 0.5;
-  out.gbuffer_ms = ms * share;
-  out.direct_ms = ms - out.gbuffer_ms;
+  const double parts[3] = {double(gbuffer_ns.load()), double(direct_ns.load()),
+                           double(band_ns.load())};
+  const double busy = parts[0] + parts[1] + parts[2];
+  out.gbuffer_ms = busy > 0.0 ? ms * parts[0] / busy : 0.5 * ms;
+  out.band_ms = busy > 0.0 ? ms * parts[2] / busy : 0.0;
+  out.direct_ms = ms - out.gbuffer_ms - out.band_ms;
   return out;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "bounce/core/image.h"
 #include "bounce/render/direct.h"
@@ -23,13 +24,20 @@ struct GBufferAndDirect {
   // The pass's wall time shared between the two by the time the threads spent in each.
   double gbuffer_ms = 0.0;
   double direct_ms = 0.0;
+  double band_ms = 0.0;  // after_band's
 };
 
-// build_gbuffer (all but the motion: compute_motion) and compute_direct, band by band. `g`
-// and `direct` are already sized.
+// Called with each band (x0, y0, x1, y1) after its G-buffer and direct light, on the same
+// thread (Technique::gbuffer_band).
+using AfterBand = std::function<void(int, int, int, int)>;
+
+// build_gbuffer (all but the motion: compute_motion; with `raster` as build_gbuffer takes it) and
+// compute_direct, band by band, then after_band (if any) on the band. `g` and `direct` are
+// already sized.
 GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
                                           const Tracer& tracer, const CameraRays& camera,
                                           vec2 subpixel, const DirectSettings& settings, GBuffer& g,
-                                          Image& direct);
+                                          Image& direct, const AfterBand& after_band = {},
+                                          const PrimaryRaster* raster = nullptr);
 
 }  // namespace bounce

@@ -164,17 +164,37 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     technique_->prepare(PrepareContext{scene_, scene_data_.view(), tracer_, change,
                                        settings.accumulate, frame_index_, f.times, f.technique});
   }
+  const bool indirect = technique_->has_indirect();
+  const FrameContext context{scene_, scene_data_.view(),  tracer_,      f.gbuffer, rays,
+                             change, settings.accumulate, frame_index_, f.times,   f.technique};
+  // The technique's G-buffer work done inside the pass (Technique::begin_gbuffer_bands), timed
+  // as this sub-stage of "indirect".
+  std::string band_stage;
+  double band_ms = 0.0;
   {
-    // One pass: each block's direct light right after its G-buffer, from the cache.
+    // One pass: each band's direct light right after its G-buffer, from the cache.
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
+    if (indirect) band_stage = technique_->begin_gbuffer_bands(context);
+    AfterBand after_band;
+    if (!band_stage.empty())
+      after_band = [this](int x0, int y0, int x1, int y1) {
+        technique_->gbuffer_band(x0, y0, x1, y1);
+      };
+    // Primary visibility from the raster where it can stand for the camera rays.
+    Stopwatch raster_watch;
+    const bool rastered =
+        settings.raster_primary && raster_.build(scene_data_.view(), rays, subpixel, w, h);
+    f.times.add("gbuffer", raster_watch.elapsed_ms());
     const GBufferAndDirect pass =
         build_gbuffer_and_direct(scene_data_.view(), lights_.view(), tracer_, rays, subpixel,
-                                 direct_settings(settings, frame_index_), f.gbuffer, f.direct);
+                                 direct_settings(settings, frame_index_), f.gbuffer, f.direct,
+                                 after_band, rastered ? &raster_ : nullptr);
     f.primary_rays = pass.primary_rays;
     f.shadow_rays = pass.shadow_rays;
     f.times.add("gbuffer", pass.gbuffer_ms);
     f.times.add("direct", pass.direct_ms);
+    band_ms = pass.band_ms;
   }
   {
     ScopedStage stage(f.times, "gbuffer");
@@ -184,8 +204,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "direct");
     direct_average_.add(f.direct, settings.accumulate, rest);
   }
-  const bool indirect = technique_->has_indirect();
   if (indirect) {
+    if (!band_stage.empty()) f.times.add(band_stage, band_ms);
     ScopedStage stage(f.times, "indirect");
     // Reused frame to frame (a fresh 3 MB image each frame costs page faults), zeroed.
     if (f.indirect.width() != w || f.indirect.height() != h)
@@ -193,14 +213,13 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     else  // on every core (11 MB at 1280 x 720)
       parallel_for(
           f.indirect.pixel_count(), [&](size_t i) { f.indirect.pixels()[i] = vec3(0.0f); }, 16384);
-    const FrameContext context{scene_, scene_data_.view(),  tracer_,      f.gbuffer, rays,
-                               change, settings.accumulate, frame_index_, f.times,   f.technique};
     technique_->indirect(context, f.indirect);
     if (average && technique_->indirect_history() == IndirectHistory::kPerFrame)
       indirect_average_.add(f.indirect, settings.accumulate, rest);
   } else {
     f.indirect = Image();
   }
+  if (!band_stage.empty()) f.times.add("indirect", band_ms);  // (its sub-stage is inside it)
   if (settings.denoise) {
     ScopedStage stage(f.times, "denoise");
     denoiser_.keep_raw(settings.view == DenoiseView::kRaw);

@@ -17,6 +17,7 @@
 #include "bounce/render/direct_kernel.h"
 #include "bounce/render/gbuffer.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/primary_raster.h"
 #include "bounce/render/technique.h"
 #include "bounce/scene/scene.h"
 #include "bounce/scene/scene_change.h"
@@ -48,6 +49,9 @@ struct FrameSettings {
   // Whether Frame::color (linear) must reach the host. The CPU has it anyway; a GPU frame copies
   // it back only when asked (bench and the viewer show `ldr`, a quarter of the bytes).
   bool host_color = true;
+  // Primary visibility by rasterisation (primary_raster.h) rather than a traced ray per pixel:
+  // the same surfaces, found faster. Off for comparison.
+  bool raster_primary = true;
 
   bool operator==(const FrameSettings&) const = default;
 };
@@ -141,6 +145,7 @@ class Renderer {
   std::vector<std::string> last_parameters_;
   RunningAverage direct_average_, indirect_average_;
   Denoiser denoiser_;
+  PrimaryRaster raster_;  // this frame's primary visibility (FrameSettings::raster_primary)
   std::unique_ptr<DevicePipeline> device_;
 };
 

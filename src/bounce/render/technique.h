@@ -103,6 +103,16 @@ class Technique {
   virtual uint64_t memory_estimate(const Scene& scene) const { return 0; }
 
   virtual void prepare(const PrepareContext& context) {}
+  // Per-pixel work of indirect() that reads only the G-buffer, which the Renderer may run band
+  // by band inside its G-buffer pass, while each band's G-buffer is still in the core's cache
+  // (at 1280 x 720 the G-buffer is three times the last-level cache). The Renderer calls
+  // begin_gbuffer_bands(context) before that pass (context.gbuffer sized, not yet written); when
+  // it returns a sub-stage name (the band work is timed as it), gbuffer_band(x0, y0, x1, y1) for
+  // every band of whole rows right after the band's G-buffer (from several threads at once,
+  // bands disjoint), and the next indirect() finds that work done. The default (an empty name):
+  // indirect() does it all.
+  virtual std::string begin_gbuffer_bands(const FrameContext& context) { return {}; }
+  virtual void gbuffer_band(int x0, int y0, int x1, int y1) {}
   // Writes indirect radiance for every G-buffer pixel into `out` (already sized and zeroed).
   virtual void indirect(const FrameContext& context, Image& out) = 0;
 

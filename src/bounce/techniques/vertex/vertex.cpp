@@ -207,7 +207,20 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   if (!(kept_tree() && kept_moving_tree() && e == last)) known_.clear();
 }
 
-void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
+namespace {
+
+// Pixels x0 .. x1 - 1 of rows y0 .. y1 - 1, each starting from what the one before it in its row
+// found (LocateHint): the same in the G-buffer pass's bands and in indirect().
+void locate_block(const VertexPixelView& v, int x0, int y0, int x1, int y1) {
+  for (int y = y0; y < y1; ++y) {
+    LocateHint hint;
+    for (int x = x0; x < x1; ++x) locate_pixel(v, v.g.index(x, y), hint);
+  }
+}
+
+}  // namespace
+
+VertexPixelView VertexPhotonMapping::pixel_buffers(const FrameContext& c) {
   const ConstGBufferView g = c.gbuffer.view();
   const size_t pixels = g.size();
   const RefinedMeshView mesh = refined_.view();
@@ -219,26 +232,41 @@ void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
   pixel_side_.resize(pixels);
   needed_.assign(slots, 0);
   irradiance_.resize(slots);
+  return {g,
+          c.scene_view,
+          mesh,
+          pixel_leaf_.data(),
+          pixel_weights_.data(),
+          pixel_side_.data(),
+          needed_.data(),
+          per_key};
+}
 
-  const VertexPixelView pv{g,
-                           c.scene_view,
-                           mesh,
-                           pixel_leaf_.data(),
-                           pixel_weights_.data(),
-                           pixel_side_.data(),
-                           needed_.data(),
-                           per_key};
-  {
+std::string VertexPhotonMapping::begin_gbuffer_bands(const FrameContext& c) {
+  located_view_ = pixel_buffers(c);
+  located_ = true;
+  return "indirect/locate";
+}
+
+void VertexPhotonMapping::gbuffer_band(int x0, int y0, int x1, int y1) {
+  locate_block(located_view_, x0, y0, x1, y1);
+}
+
+void VertexPhotonMapping::indirect(const FrameContext& c, Image& out) {
+  const ConstGBufferView g = c.gbuffer.view();
+  const size_t pixels = g.size();
+  const bool per_key = settings_.use_estimate_cache;
+  // (Located in the G-buffer pass only if that pass was over this G-buffer.)
+  const bool located = located_ && located_view_.g.width == g.width &&
+                       located_view_.g.height == g.height && located_view_.g.depth == g.depth;
+  located_ = false;
+  const VertexPixelView pv = located ? located_view_ : pixel_buffers(c);
+  const RefinedMeshView mesh = pv.mesh;
+  const size_t slots = needed_.size();
+  if (!located) {
     ScopedStage stage(c.times, "indirect/locate");
-    // In runs of pixels, each starting from what the one before it found (LocateHint).
-    constexpr size_t kRun = 1024;
-    parallel_for((pixels + kRun - 1) / kRun,
-                 [&](size_t r) {
-                   LocateHint hint;
-                   for (size_t i = r * kRun, end = std::min(pixels, i + kRun); i < end; ++i)
-                     locate_pixel(pv, i, hint);
-                 },
-                 1);
+    parallel_for(
+        size_t(g.height), [&](size_t y) { locate_block(pv, 0, int(y), g.width, int(y) + 1); }, 1);
   }
   {
     ScopedStage stage(c.times, "indirect/estimate");

@@ -11,6 +11,7 @@
 #include "bounce/techniques/vertex/photon_ring.h"
 #include "bounce/techniques/vertex/refined_mesh.h"
 #include "bounce/techniques/vertex/vertex_estimate.h"
+#include "bounce/techniques/vertex/vertex_kernels.h"
 #include "bounce/techniques/vertex/vertex_photons.h"
 
 namespace bounce {
@@ -60,6 +61,9 @@ class VertexPhotonMapping final : public Technique {
   // Refines the mesh (first frame, new refinement) or moves its keys (moved meshes); traces this
   // frame's photons into the ring's slot and builds the kd-tree over the ring.
   void prepare(const PrepareContext& context) override;
+  // Finds each pixel's refined triangle ("indirect/locate") band by band in the G-buffer pass.
+  std::string begin_gbuffer_bands(const FrameContext& context) override;
+  void gbuffer_band(int x0, int y0, int x1, int y1) override;
   // Estimates at the keys of the refined triangles the pixels see, and interpolates them.
   void indirect(const FrameContext& context, Image& out) override;
 
@@ -83,6 +87,10 @@ class VertexPhotonMapping final : public Technique {
   bool kept_moving_tree() const { return moving_.kept(); }
 
  private:
+  // Sizes the per-pixel and per-slot buffers for the context's G-buffer and the refined mesh;
+  // returns the view the pixel kernels write them through.
+  VertexPixelView pixel_buffers(const FrameContext& context);
+
   VertexSettings settings_;
   VertexSettings applied_;  // the settings the ring and refinement were made with
   bool started_ = false;
@@ -109,6 +117,9 @@ class VertexPhotonMapping final : public Technique {
   std::vector<uint8_t> known_;  // estimated since the tree was built (keep_unchanged)
   std::vector<uint32_t> todo_;
   std::vector<vec3> irradiance_;
+  // The pixels were located in the G-buffer pass (begin_gbuffer_bands), through this view.
+  bool located_ = false;
+  VertexPixelView located_view_{};
 };
 
 }  // namespace bounce

@@ -18,6 +18,7 @@
 #include "bounce/render/photon_path.h"
 #include "bounce/render/surface.h"
 #include "bounce/scene/scene_view.h"
+#include "bounce/trace/ray_triangle.h"
 #include "bounce/trace/trace_view.h"
 
 namespace bounce {
@@ -70,26 +71,18 @@ BOUNCE_HD inline Hit intersect_every_triangle(const SceneView& scene, const Trac
     const MeshView& mesh = scene.meshes[m];
     for (uint32_t t = 0; t < mesh.triangle_count; ++t) {
       const uvec3 i = mesh.triangles[t];
-      const vec3 p0 = mesh.positions[i.x];
-      const vec3 e1 = mesh.positions[i.y] - p0, e2 = mesh.positions[i.z] - p0;
-      const vec3 pv = glm::cross(ray.direction, e2);
-      const float det = glm::dot(e1, pv);
-      if (glm::abs(det) < 1e-12f) continue;
-      const float inv = 1.0f / det;
-      const vec3 tv = ray.origin - p0;
-      const float b1 = glm::dot(tv, pv) * inv;
-      if (b1 < 0.0f || b1 > 1.0f) continue;
-      const vec3 qv = glm::cross(tv, e1);
-      const float b2 = glm::dot(ray.direction, qv) * inv;
-      if (b2 < 0.0f || b1 + b2 > 1.0f) continue;
-      const float d = glm::dot(e2, qv) * inv;
-      if (d > ray.tmin && d < best) {
+      Ray nearer = ray;
+      nearer.tmax = best;
+      float d = 0.0f;
+      vec2 b(0.0f);
+      if (intersect_triangle(mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z], nearer,
+                             d, b)) {
         best = d;
         hit = Hit{};
         hit.t = d;
         hit.mesh = m;
         hit.triangle = t;
-        hit.barycentric = vec2(b1, b2);
+        hit.barycentric = b;
       }
     }
   }
