@@ -41,7 +41,9 @@ void expect_fused_pass_equals_the_stages(const Scene& scene, bool rows, bool ras
   settings.frame = 5;
   ASSERT_EQ(direct_takes_rows(data.view(), picker.view(), settings), rows);
   PrimaryRaster raster;
-  if (rasterise) ASSERT_TRUE(raster.build(data.view(), camera, subpixel, kWidth, kHeight));
+  if (rasterise) {
+    ASSERT_TRUE(raster.build(data.view(), camera, subpixel, kWidth, kHeight));
+  }
   const PrimaryRaster* visibility = rasterise ? &raster : nullptr;
 
   GBuffer g1;
