@@ -90,18 +90,8 @@ TEST(MaterialMaps, NormalMappedPlaneShadesAsTheTiltedPlane) {
 // (with repeat wrapping) crosses the cutoff at u = 0.5 and near the edges only.
 Scene masked_quad_scene() {
   Scene s = floor_scene();
-  Material leaf;
-  leaf.albedo = vec3(0.5f);
-  leaf.alpha_mode = AlphaMode::kMask;
-  leaf.alpha_cutoff = 0.5f;
-  leaf.alpha_texture = 0;
-  s.materials.push_back(leaf);
-  Texture alpha;
-  alpha.width = 4;
-  alpha.height = 1;
-  alpha.texels = {vec3(1.0f), vec3(1.0f), vec3(0.0f), vec3(0.0f)};
-  s.textures.push_back(alpha);
-  Mesh quad = quad_mesh("leaf", vec3(-1, 0.5f, -1), vec3(0, 0, 2), vec3(2, 0, 0), 1);
+  const uint32_t leaf = scene_test::add_half_cut_out_material(s);
+  Mesh quad = quad_mesh("leaf", vec3(-1, 0.5f, -1), vec3(0, 0, 2), vec3(2, 0, 0), leaf);
   for (const vec3& p : quad.positions) quad.uvs.push_back({(p.x + 1) / 2, (p.z + 1) / 2});
   s.meshes.push_back(quad);
   s.lights.clear();

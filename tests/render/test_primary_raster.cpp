@@ -13,6 +13,7 @@
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
 #include "bounce/trace/tracer.h"
+#include "scene/hand_built_scenes.h"
 
 namespace bounce {
 namespace {
@@ -105,24 +106,14 @@ TEST(PrimaryRaster, CutOutsAreTraced) {
   // A quad whose right half is cut out (alpha texels 1, 1, 0, 0) over the Cornell box's floor:
   // through its hole the traced rays see the floor, and so must the raster's G-buffer.
   Scene s = make_cornell();
-  Material leaf;
-  leaf.albedo = vec3(0.5f);
-  leaf.alpha_mode = AlphaMode::kMask;
-  leaf.alpha_cutoff = 0.5f;
-  leaf.alpha_texture = int(s.textures.size());
-  s.materials.push_back(leaf);
-  Texture alpha;
-  alpha.width = 4;
-  alpha.height = 1;
-  alpha.texels = {vec3(1.0f), vec3(1.0f), vec3(0.0f), vec3(0.0f)};
-  s.textures.push_back(alpha);
+  const uint32_t leaf = scene_test::add_half_cut_out_material(s);
   Mesh quad;
   quad.name = "leaf";
   quad.positions = {
       {-0.4f, 0.1f, -0.4f}, {0.4f, 0.1f, -0.4f}, {0.4f, 0.1f, 0.4f}, {-0.4f, 0.1f, 0.4f}};
   quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   quad.triangles = {{0, 1, 2}, {0, 2, 3}};
-  quad.materials = {uint32_t(s.materials.size() - 1), uint32_t(s.materials.size() - 1)};
+  quad.materials = {leaf, leaf};
   s.meshes.push_back(quad);
   s.finalize();
   expect_same_surfaces(compare_with_rays(s, 90, 90));

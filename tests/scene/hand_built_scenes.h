@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bounce/scene/mesh.h"
+#include "bounce/scene/scene.h"
 
 namespace bounce::scene_test {
 
@@ -43,6 +44,23 @@ inline Mesh inward_box(const std::string& name, vec3 lo, vec3 hi, uint32_t mater
     add_quad(mesh, far_corner, e2, e1, material);
   }
   return mesh;
+}
+
+// Appends a grey material with alpha cut-outs: an alpha texture of four texels (1, 1, 0, 0)
+// along u, so its right half is a hole (cutoff 0.5). Returns the material's index.
+inline uint32_t add_half_cut_out_material(Scene& s) {
+  Material leaf;
+  leaf.albedo = vec3(0.5f);
+  leaf.alpha_mode = AlphaMode::kMask;
+  leaf.alpha_cutoff = 0.5f;
+  leaf.alpha_texture = int(s.textures.size());
+  s.materials.push_back(leaf);
+  Texture alpha;
+  alpha.width = 4;
+  alpha.height = 1;
+  alpha.texels = {vec3(1.0f), vec3(1.0f), vec3(0.0f), vec3(0.0f)};
+  s.textures.push_back(alpha);
+  return uint32_t(s.materials.size() - 1);
 }
 
 // An outward sphere of 2 r^2 triangles with bumps, so that no rotation maps it onto itself.
