@@ -84,6 +84,16 @@ void expect_same_surfaces(const Compared& c, double share = 0.999) {
   EXPECT_GE(double(c.candidates), share * double(c.hits));
 }
 
+TEST(PrimaryRaster, PaysOnlyWithEnoughPixelsPerTriangle) {
+  EXPECT_TRUE(raster_pays(32, 512, 512));     // the Cornell box
+  EXPECT_TRUE(raster_pays(4089, 640, 360));   // oa_dm4, 56 pixels a triangle
+  EXPECT_TRUE(raster_pays(16384, 512, 512));  // 16 pixels a triangle: the line
+  EXPECT_FALSE(raster_pays(16385, 512, 512));
+  EXPECT_FALSE(raster_pays(60014, 512, 512));  // cubes:5000, slower rasterised
+  EXPECT_FALSE(raster_pays(1000010, 512, 512));
+  EXPECT_FALSE(raster_pays(1, 0, 0));
+}
+
 TEST(PrimaryRaster, CornellBoxSurfacesAreTheTracedOnes) {
   expect_same_surfaces(compare_with_rays(make_cornell(), 97, 61));
 }

@@ -181,10 +181,10 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
       after_band = [this](int x0, int y0, int x1, int y1) {
         technique_->gbuffer_band(x0, y0, x1, y1);
       };
-    // Primary visibility from the raster where it can stand for the camera rays.
+    // Primary visibility from the raster where it pays and can stand for the camera rays.
     Stopwatch raster_watch;
-    const bool rastered =
-        settings.raster_primary && raster_.build(scene_data_.view(), rays, subpixel, w, h);
+    const bool rastered = settings.raster_primary && raster_pays(scene_.triangle_count(), w, h) &&
+                          raster_.build(scene_data_.view(), rays, subpixel, w, h);
     f.times.add("gbuffer", raster_watch.elapsed_ms());
     const GBufferAndDirect pass =
         build_gbuffer_and_direct(scene_data_.view(), lights_.view(), tracer_, rays, subpixel,

@@ -49,8 +49,9 @@ struct FrameSettings {
   // Whether Frame::color (linear) must reach the host. The CPU has it anyway; a GPU frame copies
   // it back only when asked (bench and the viewer show `ldr`, a quarter of the bytes).
   bool host_color = true;
-  // Primary visibility by rasterisation (primary_raster.h) rather than a traced ray per pixel:
-  // the same surfaces, found faster. Off for comparison.
+  // Primary visibility by rasterisation (primary_raster.h) rather than a traced ray per pixel,
+  // where it pays (raster_pays: enough pixels per triangle): the same surfaces, found faster.
+  // Off for comparison.
   bool raster_primary = true;
 
   bool operator==(const FrameSettings&) const = default;
@@ -69,10 +70,10 @@ struct Frame {
   Image direct;    // direct light plus emitters seen directly (averaged at rest, or denoised)
   Image indirect;  // the technique's indirect radiance (averaged at rest, or denoised)
   Image color;     // linear composite (empty from a GPU frame unless FrameSettings::host_color)
-  std::vector<uint8_t> ldr;  // tone-mapped sRGB, 3 bytes per pixel
+  std::vector<uint8_t> ldr;   // tone-mapped sRGB, 3 bytes per pixel
   int width = 0, height = 0;  // the frame's size (ldr's)
-  int frames_averaged = 1;   // frames that went into this one at rest (1 after any change)
-  SceneChange change;        // what changed since the previous frame
+  int frames_averaged = 1;    // frames that went into this one at rest (1 after any change)
+  SceneChange change;         // what changed since the previous frame
   StageTimes times;
   uint64_t primary_rays = 0;
   uint64_t shadow_rays = 0;
