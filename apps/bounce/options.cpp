@@ -145,7 +145,8 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
   command.add_option("--seed", o.seed, "Seed of the sample patterns")->capture_default_str();
   command.add_flag("--trace-primary", o.trace_primary,
                    "Find each pixel's surface with a traced primary ray instead of rasterising "
-                   "the triangles (the same surfaces up to rounding; for comparison)");
+                   "the triangles, which the renderer does where it pays (16 or more pixels a "
+                   "triangle); the same surfaces up to rounding, for comparison");
   command.add_option("--at", o.at, "Animated scenes: the animation time to pose the scene at, s")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
