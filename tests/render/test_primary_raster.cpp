@@ -117,13 +117,9 @@ TEST(PrimaryRaster, CutOutsAreTraced) {
   // through its hole the traced rays see the floor, and so must the raster's G-buffer.
   Scene s = make_cornell();
   const uint32_t leaf = scene_test::add_half_cut_out_material(s);
-  Mesh quad;
-  quad.name = "leaf";
-  quad.positions = {
-      {-0.4f, 0.1f, -0.4f}, {0.4f, 0.1f, -0.4f}, {0.4f, 0.1f, 0.4f}, {-0.4f, 0.1f, 0.4f}};
+  Mesh quad = scene_test::quad_mesh("leaf", vec3(-0.4f, 0.1f, -0.4f), vec3(0.8f, 0.0f, 0.0f),
+                                    vec3(0.0f, 0.0f, 0.8f), leaf);
   quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
-  quad.materials = {leaf, leaf};
   s.meshes.push_back(quad);
   s.finalize();
   expect_same_surfaces(compare_with_rays(s, 90, 90));
