@@ -41,25 +41,54 @@ constexpr int kGBufferRun = 64;
 // 640 x 360; docs/benchmarks.md).
 namespace {
 
-// Where the raster's candidate stands for the traced ray: the ray's hit on it (or no triangle
-// where the pixel has none), with the sphere lights; false where the ray must be traced (it
-// misses its candidate, which lies within the raster's margin, or the candidate has cut-outs).
-bool hit_from_raster(const SceneView& scene, const TraceView& trace, const PrimaryRaster& raster,
-                     size_t i, const Ray& ray, Hit& hit) {
-  hit = Hit{};
-  const uint32_t c = raster.candidates()[i];
-  if (c != PrimaryRaster::kNone) {
+// The raster's candidate triangle as the G-buffer reads it, loaded once for the pixels of a run
+// that see it (a level at 1280 x 720 has about 200 pixels a triangle).
+struct Candidate {
+  uint32_t index = PrimaryRaster::kNone;  // in the raster's triangles()
+  uint32_t mesh = 0, triangle = 0, id = 0;
+  bool cutouts = false;
+  SurfaceTriangle surface;
+  TriangleFromOrigin test;  // for rays from the camera
+
+  void load(const SceneView& scene, const PrimaryRaster& raster, uint32_t c, vec3 eye) {
     const RasterTriangle& r = raster.triangles()[c];
-    const MeshView& mesh = scene.meshes[r.mesh];
-    if (scene.materials[mesh.materials[r.triangle]].has_cutouts()) return false;
-    const uvec3 tri = mesh.triangles[r.triangle];
-    if (!intersect_triangle(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
-                            ray, hit.t, hit.barycentric))
-      return false;
-    hit.mesh = r.mesh;
-    hit.triangle = r.triangle;
+    const MeshView& m = scene.meshes[r.mesh];
+    const MaterialRecord& material = scene.materials[m.materials[r.triangle]];
+    index = c;
+    mesh = r.mesh;
+    triangle = r.triangle;
+    id = scene.triangle_id(r.mesh, r.triangle);
+    cutouts = material.has_cutouts();
+    surface = surface_triangle(m, material, r.triangle);
+    test = TriangleFromOrigin::make(surface.p0, surface.p1, surface.p2, eye);
   }
+};
+
+// Pixel i from the raster's candidate, as the traced ray's hit would write it: the ray's hit on
+// the candidate (or no triangle where the pixel has none), with the sphere lights. Returns false,
+// writing nothing, where the ray must be traced (it misses its candidate, which lies within the
+// raster's margin, or the candidate has cut-outs).
+bool pixel_from_raster(const SceneView& scene, const TraceView& trace, const PrimaryRaster& raster,
+                       vec3 forward, size_t i, const Ray& ray, Candidate& candidate,
+                       const GBufferView& g) {
+  Hit hit;
+  const uint32_t c = raster.candidates()[i];
+  if (c == PrimaryRaster::kNone) {
+    closest_sphere(trace.spheres, trace.sphere_count, ray, hit);
+    gbuffer_pixel(scene, forward, ray, hit, i, g);
+    return true;
+  }
+  if (c != candidate.index) candidate.load(scene, raster, c, ray.origin);
+  if (candidate.cutouts) return false;
+  if (!candidate.test.intersect(ray.direction, ray.tmin, ray.tmax, hit.t, hit.barycentric))
+    return false;
+  hit.mesh = candidate.mesh;
+  hit.triangle = candidate.triangle;
   closest_sphere(trace.spheres, trace.sphere_count, ray, hit);
+  if (hit.valid())
+    gbuffer_triangle_pixel(scene, forward, ray, hit, candidate.surface, candidate.id, i, g);
+  else
+    gbuffer_pixel(scene, forward, ray, hit, i, g);
   return true;
 }
 
@@ -71,6 +100,7 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
   std::array<Ray, kGBufferRun> rays, traced;
   std::array<Hit, kGBufferRun> hits, traced_hits;
   std::array<uint32_t, kGBufferRun> traced_index;
+  Candidate candidate;
   const TraceView trace = raster ? tracer.view() : TraceView{};
   for (int y = y0; y < y1; ++y)
     for (int run = x0; run < x1; run += kGBufferRun) {
@@ -85,23 +115,26 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
       if (!raster) {
         tracer.intersect(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n),
                          true);
-      } else {
-        // The raster's hits, and the rays it cannot stand for traced together.
-        size_t m = 0;
-        for (size_t k = 0; k < n; ++k)
-          if (!hit_from_raster(scene, trace, *raster, g.index(run + int(k), y), rays[k], hits[k])) {
-            traced[m] = rays[k];
-            traced_index[m++] = uint32_t(k);
-          }
-        if (m > 0) {
-          tracer.intersect(std::span<const Ray>(traced.data(), m),
-                           std::span<Hit>(traced_hits.data(), m), true);
-          for (size_t k = 0; k < m; ++k) hits[traced_index[k]] = traced_hits[k];
-        }
+        n = 0;
+        for (int x = run; x < end; ++x, ++n)
+          gbuffer_pixel(scene, camera.forward, rays[n], hits[n], g.index(x, y), g);
+        continue;
       }
-      n = 0;
-      for (int x = run; x < end; ++x, ++n)
-        gbuffer_pixel(scene, camera.forward, rays[n], hits[n], g.index(x, y), g);
+      // The pixels the raster stands for written at once, the rays it cannot stand for traced
+      // together.
+      size_t m = 0;
+      for (size_t k = 0; k < n; ++k)
+        if (!pixel_from_raster(scene, trace, *raster, camera.forward, g.index(run + int(k), y),
+                               rays[k], candidate, g)) {
+          traced[m] = rays[k];
+          traced_index[m++] = uint32_t(k);
+        }
+      if (m == 0) continue;
+      tracer.intersect(std::span<const Ray>(traced.data(), m),
+                       std::span<Hit>(traced_hits.data(), m), true);
+      for (size_t k = 0; k < m; ++k)
+        gbuffer_pixel(scene, camera.forward, traced[k], traced_hits[k],
+                      g.index(run + int(traced_index[k]), y), g);
     }
 }
 

@@ -15,6 +15,20 @@
 
 namespace bounce {
 
+// Writes pixel i for a primary ray along unit `ray.direction` that met triangle `hit`
+// (hit.valid()), whose surface_triangle is `t` and global id `id`: what gbuffer_pixel writes there.
+// The raster's runs load `t` once for the pixels that see the same triangle.
+BOUNCE_HD BOUNCE_LANE_INLINE void gbuffer_triangle_pixel(const SceneView& scene, vec3 forward,
+                                                         const Ray& ray, const Hit& hit,
+                                                         const SurfaceTriangle& t, uint32_t id,
+                                                         size_t i, const GBufferView& g) {
+  g.store(i, surface_on(t, hit.barycentric, ray.direction, scene.textures));
+  g.primitive[i] = id;
+  g.mesh[i] = hit.mesh;
+  g.barycentric[i] = hit.barycentric;
+  g.depth[i] = hit.t * glm::dot(ray.direction, forward);
+}
+
 // Writes pixel i for a primary ray along unit `ray.direction` that met `hit` (a triangle, a
 // sphere light, or nothing). `forward` is the camera's viewing axis: depth is measured along it.
 // Every field but the motion, which the motion pass (motion_kernel.h) writes for every pixel
@@ -38,11 +52,11 @@ BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const 
     g.store(i, none);
     return;
   }
-  g.store(i, surface_at(scene, hit, ray.direction));
-  g.primitive[i] = scene.triangle_id(hit.mesh, hit.triangle);
-  g.mesh[i] = hit.mesh;
-  g.barycentric[i] = hit.barycentric;
-  g.depth[i] = hit.t * glm::dot(ray.direction, forward);
+  const MeshView& mesh = scene.meshes[hit.mesh];
+  gbuffer_triangle_pixel(
+      scene, forward, ray, hit,
+      surface_triangle(mesh, scene.materials[mesh.materials[hit.triangle]], hit.triangle),
+      scene.triangle_id(hit.mesh, hit.triangle), i, g);
 }
 
 }  // namespace bounce

@@ -12,37 +12,73 @@
 
 namespace bounce {
 
-// The surface at a triangle hit on `mesh`, whose material there is `material`, for a ray
-// travelling along `direction`; `textures[i].sample(uv)` reads the scene's textures, or with
-// kMeanTextures their means (material_at; no normal map then). The one implementation behind
-// both surface_at forms.
+// What surface_on reads of one triangle: its corners, their normals and texture coordinates
+// where the mesh has them, the unit face normal and the material. Loaded once, it serves every
+// pixel that sees the triangle (the G-buffer's runs over the raster's candidates).
+struct SurfaceTriangle {
+  vec3 p0, p1, p2;
+  vec3 n0, n1, n2;     // meaningful with has_normals
+  vec2 uv0, uv1, uv2;  // meaningful with has_uvs
+  vec3 face;
+  const MaterialRecord* material = nullptr;
+  bool has_normals = false;
+  bool has_uvs = false;
+};
+
+BOUNCE_HD BOUNCE_LANE_INLINE SurfaceTriangle surface_triangle(const MeshView& mesh,
+                                                              const MaterialRecord& material,
+                                                              uint32_t triangle) {
+  const uvec3 tri = mesh.triangles[triangle];
+  SurfaceTriangle t;
+  t.p0 = mesh.positions[tri.x];
+  t.p1 = mesh.positions[tri.y];
+  t.p2 = mesh.positions[tri.z];
+  t.face = mesh.unit_face_normal(triangle, tri);
+  t.material = &material;
+  t.has_normals = mesh.normals != nullptr;
+  if (t.has_normals) {
+    t.n0 = mesh.normals[tri.x];
+    t.n1 = mesh.normals[tri.y];
+    t.n2 = mesh.normals[tri.z];
+  }
+  t.has_uvs = mesh.uvs != nullptr;
+  if (t.has_uvs) {
+    t.uv0 = mesh.uvs[tri.x];
+    t.uv1 = mesh.uvs[tri.y];
+    t.uv2 = mesh.uvs[tri.z];
+  }
+  return t;
+}
+
+// The surface at barycentric (b1, b2) of triangle t for a ray travelling along `direction`;
+// `textures[i].sample(uv)` reads the scene's textures, or with kMeanTextures their means
+// (material_at; no normal map then). The one implementation behind every surface_at form.
 template <bool kMeanTextures = false, typename Textures>
-BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& material,
-                                const Hit& hit, vec3 direction, const Textures& textures) {
-  const uvec3 tri = mesh.triangles[hit.triangle];
-  const float b1 = hit.barycentric.x, b2 = hit.barycentric.y, b0 = 1.0f - b1 - b2;
+BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec2 barycentric,
+                                                   vec3 direction, const Textures& textures) {
+  const MaterialRecord& material = *t.material;
+  const float b1 = barycentric.x, b2 = barycentric.y, b0 = 1.0f - b1 - b2;
 
   SurfaceHit s;
-  s.position = b0 * mesh.positions[tri.x] + b1 * mesh.positions[tri.y] + b2 * mesh.positions[tri.z];
-  const vec3 face = mesh.unit_face_normal(hit.triangle, tri);
+  s.position = b0 * t.p0 + b1 * t.p1 + b2 * t.p2;
+  const vec3 face = t.face;
   const bool front = glm::dot(face, direction) < 0.0f;
   s.geometric_normal = front ? face : -face;
   // The shading normal as the file has it (interpolated, else the face's), turned to the
   // viewer's side after any normal map: a back face shows the front's perturbation mirrored.
   vec3 normal = face;
-  if (mesh.normals) {
-    const vec3 n = b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] + b2 * mesh.normals[tri.z];
+  if (t.has_normals) {
+    const vec3 n = b0 * t.n0 + b1 * t.n1 + b2 * t.n2;
     // One division, not glm's three (vec3 / float): they were a tenth of the G-buffer kernel.
     const float len = glm::length(n);
     if (len > 0.0f) normal = n * (1.0f / len);
   }
   vec2 uv(0.0f);
-  if (mesh.uvs) {
-    uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+  if (t.has_uvs) {
+    uv = b0 * t.uv0 + b1 * t.uv1 + b2 * t.uv2;
     TangentFrame frame;
     if (!kMeanTextures && material.normal_texture >= 0 &&
-        tangent_frame(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z],
-                      mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z], normal, frame)) {
+        tangent_frame(t.p0, t.p1, t.p2, t.uv0, t.uv1, t.uv2, normal, frame)) {
       const vec3 mapped = frame.to_world(tangent_space_normal(material, textures, uv));
       const float len = glm::length(mapped);
       if (len > 0.0f) normal = mapped * (1.0f / len);
@@ -56,6 +92,14 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
   s.roughness = m.roughness;
   s.emission = front ? m.emission : vec3(0.0f);
   return s;
+}
+
+// The same at a triangle hit on `mesh`, whose material there is `material`.
+template <bool kMeanTextures = false, typename Textures>
+BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& material,
+                                const Hit& hit, vec3 direction, const Textures& textures) {
+  return surface_on<kMeanTextures>(surface_triangle(mesh, material, hit.triangle), hit.barycentric,
+                                   direction, textures);
 }
 
 // Evaluates the surface at a triangle `hit` (hit.valid()) for a ray travelling along `direction`
