@@ -109,6 +109,8 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
       {"photons",
        {{"paths_per_frame", r.photon_paths / frames},
         {"stored_per_frame", r.photons_stored / frames},
+        // Of those, kept from unchanged frame-coherent paths rather than traced again.
+        {"reused_per_frame", r.photons_reused / frames},
         // Photon paths over the technique's time (prepare: tracing; indirect: estimation).
         {"paths_per_s", per_second(r.photon_paths, r.technique_ms)}}},
       {"flicker", flicker_json(r.temporal)},

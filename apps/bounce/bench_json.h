@@ -34,7 +34,7 @@ struct BenchRecord {
   const StageStatistics* stats = nullptr;
   // Totals over the timed frames.
   double primary_rays = 0.0, shadow_rays = 0.0, technique_rays = 0.0;
-  double photon_paths = 0.0, photons_stored = 0.0;
+  double photon_paths = 0.0, photons_stored = 0.0, photons_reused = 0.0;
   double gbuffer_ms = 0.0, direct_ms = 0.0;
   double technique_ms = 0.0;                 // the technique's stages: prepare and indirect
   const TemporalRecord* temporal = nullptr;  // "flicker" and "settle" (null when not measured)

@@ -144,6 +144,7 @@ void run_bench(BenchOptions o) {
     record.technique_rays += double(f.technique.rays);
     record.photon_paths += double(f.technique.photon_paths);
     record.photons_stored += double(f.technique.photons_stored);
+    record.photons_reused += double(f.technique.photons_reused);
   }
   const int threads =
       o.frame.threads > 0 ? o.frame.threads : int(std::thread::hardware_concurrency());
@@ -162,10 +163,13 @@ void run_bench(BenchOptions o) {
   fmt::print("primary rays/s (gbuffer)     {:>10.2f} M\n", primary / (gbuffer_ms * 1e3));
   fmt::print("shadow rays/s (direct stage) {:>10.2f} M  ({:.0f} shadow rays per frame)\n",
              shadow / (direct_ms * 1e3), shadow / o.frames);
-  if (record.photon_paths > 0)
-    fmt::print("photons per frame            {:>10.0f}    ({:.0f} paths; {:.2f} M stored/s)\n",
-               record.photons_stored / o.frames, record.photon_paths / o.frames,
-               record.photons_stored / (stats.rows().back().mean_ms * o.frames * 1e3));
+  if (record.photons_stored > 0)
+    fmt::print(
+        "photons per frame            {:>10.0f}    ({:.0f} paths traced, {:.0f} photons of "
+        "unchanged paths kept; {:.2f} M stored/s)\n",
+        record.photons_stored / o.frames, record.photon_paths / o.frames,
+        record.photons_reused / o.frames,
+        record.photons_stored / (stats.rows().back().mean_ms * o.frames * 1e3));
   // The estimate is what the memory check before the first frame allowed for: exact for
   // buffers sized up front (lhb), an upper bound where photon counts vary (vertex), so the
   // process's resident memory is printed beside it.

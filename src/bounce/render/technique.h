@@ -30,8 +30,9 @@ namespace bounce {
 
 // What a technique did in one frame, for benchmarks (photons per second, rays per second).
 struct TechniqueCounters {
-  uint64_t photon_paths = 0;
-  uint64_t photons_stored = 0;
+  uint64_t photon_paths = 0;    // traced
+  uint64_t photons_stored = 0;  // the frame's photons, those reused included
+  uint64_t photons_reused = 0;  // kept from an identical earlier trace instead of retraced
   uint64_t rays = 0;
 };
 

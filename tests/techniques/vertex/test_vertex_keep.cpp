@@ -6,6 +6,7 @@
 
 #include "bounce/interactive/flashlight.h"
 #include "bounce/scene/load.h"
+#include "bounce/scene/scene_edit.h"
 #include "vertex_test_util.h"
 
 namespace bounce {
@@ -34,6 +35,9 @@ TEST(VertexKeep, AStillSceneKeepsItsTreeAndEstimatesAndTheSameFrames) {
     EXPECT_FALSE(recompute.technique->kept_tree());
     // The ring fills in 3 frames; from then on each refill retraces the paths it replaces.
     EXPECT_EQ(keep.technique->kept_tree(), f >= 3);
+    // ... and those paths are not traced at all: the slot keeps the photons it holds.
+    EXPECT_EQ(keep.technique->reused_still_photons(), f >= 3);
+    EXPECT_FALSE(recompute.technique->reused_still_photons());
     EXPECT_GT(recompute.technique->estimates(), 0u);
     if (f >= 3) {
       EXPECT_EQ(keep.technique->estimates(), 0u) << "every visible key was estimated already";
@@ -57,10 +61,62 @@ TEST(VertexKeep, ADimmedLightMakesNewPhotonsAndANewTree) {
   run.renderer->scene_changed(change);
   run.frame(scene);
   EXPECT_FALSE(run.technique->kept_tree());
+  EXPECT_FALSE(run.technique->reused_still_photons());
   EXPECT_GT(run.technique->estimates(), 0u);
-  // The tree holds the dimmed slot beside the old ones: not the map it kept.
+  // The tree holds the dimmed slot beside the old ones: not the map it kept. The slots traced
+  // before the change are traced again, however still the scene is since.
+  for (int f = 0; f < 2; ++f) {
+    run.frame(scene);
+    EXPECT_FALSE(run.technique->kept_tree());
+    EXPECT_FALSE(run.technique->reused_still_photons());
+  }
   run.frame(scene);
-  EXPECT_FALSE(run.technique->kept_tree());
+  EXPECT_TRUE(run.technique->reused_still_photons());
+}
+
+// A mesh that moves once and stops: the slots traced before it moved hold photons of the old
+// geometry, so they are traced again as the ring turns, and kept only from then on; every frame
+// is the one retracing every photon gives.
+TEST(VertexKeep, StillPhotonsAreKeptOnlyIfTracedSinceTheLastChange) {
+  Scene scene = make_cornell();
+  VertexRun keep(scene, kSmall, 24), recompute(scene, with(kSmall, "keep_unchanged", "false"), 24);
+  for (VertexRun* run : {&keep, &recompute}) run->settings.accumulate = false;
+  const uint32_t moved = uint32_t(scene.meshes.size() - 1);
+  for (int f = 0; f < 12; ++f) {
+    SCOPED_TRACE(f);
+    if (f == 5) {
+      const SceneChange change = move_mesh(scene, moved, vec3(0.05f, 0.0f, 0.0f));
+      keep.renderer->scene_changed(change);
+      recompute.renderer->scene_changed(change);
+    }
+    const Frame& a = keep.frame(scene);
+    const Frame& b = recompute.frame(scene);
+    ASSERT_EQ(a.indirect.pixels(), b.indirect.pixels());
+    // The 3 slots fill in frames 0-2; frame 5 moves the mesh, and frames 6 and 7 refill slots
+    // traced before it did.
+    EXPECT_EQ(keep.technique->reused_still_photons(), (f >= 3 && f < 5) || f >= 8);
+  }
+}
+
+// At rest with accumulation each frame's photons are a fresh set, not the slot's frame-coherent
+// one: when the camera moves again, those slots are traced again.
+TEST(VertexKeep, FreshSetsAtRestAreNotKeptAsFrameCoherentOnes) {
+  Scene scene = make_cornell();
+  VertexRun run(scene, kSmall, 24);
+  run.settings.accumulate = true;
+  for (int f = 0; f < 6; ++f) {
+    run.frame(scene);
+    EXPECT_FALSE(run.technique->reused_still_photons()) << f;
+  }
+  Camera camera = scene.camera;
+  for (int f = 0; f < 3; ++f) {
+    camera.position.x += 0.01f;
+    run.renderer->render(camera, run.settings);
+    EXPECT_FALSE(run.technique->reused_still_photons()) << f;
+  }
+  camera.position.x += 0.01f;
+  run.renderer->render(camera, run.settings);
+  EXPECT_TRUE(run.technique->reused_still_photons());
 }
 
 // A light that moves every frame (a flashlight swept across the box) keeps its photons apart:
@@ -98,6 +154,8 @@ TEST(VertexKeep, AMovingLightLeavesTheOtherLightsTreeStanding) {
     EXPECT_EQ(rebuild.technique->moving_ring().photon_count(), 0u);
     // Frame 1 moves the light; frame 3 still replaces frame 0's slot, which held its photons.
     EXPECT_EQ(keep.technique->kept_tree(), f >= 4);
+    // The other light's paths are kept from then on, the moving light's traced every frame.
+    EXPECT_EQ(keep.technique->reused_still_photons(), f >= 4);
     if (f >= 1) {
       EXPECT_FALSE(keep.technique->kept_moving_tree());
       EXPECT_GT(keep.technique->moving_ring().photon_count(), 0u);

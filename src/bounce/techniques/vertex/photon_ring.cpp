@@ -41,8 +41,15 @@ MapPhotons& RingedPhotonTree::refill(uint32_t frame, bool compare) {
   return slot;
 }
 
-void RingedPhotonTree::update(uint32_t leaf_size) {
-  kept_ = compare_ && slot_ && *slot_ == replaced_;
+MapPhotons& RingedPhotonTree::revisit(uint32_t frame) {
+  compare_ = false;
+  MapPhotons& slot = ring_.held(frame);
+  slot_ = &slot;
+  return slot;
+}
+
+void RingedPhotonTree::update(uint32_t leaf_size, bool unchanged) {
+  kept_ = unchanged || (compare_ && slot_ && *slot_ == replaced_);
   if (kept_) return;
   ring_.gather(map_);
   tree_.build(map_, leaf_size);

@@ -24,6 +24,8 @@ class PhotonRing {
   uint32_t filled() const { return filled_; }
   size_t photon_count() const;
   const MapPhotons& slot(uint32_t i) const { return slots_[i]; }
+  // The slot frame `frame` fills, as it is (held since it was last filled).
+  MapPhotons& held(uint32_t frame) { return slots_[frame % frames()]; }
 
  private:
   std::vector<MapPhotons> slots_;
@@ -39,8 +41,11 @@ class RingedPhotonTree {
   void reset(uint32_t frames) { ring_.reset(frames); }
   // This frame's slot, emptied for tracing; with `compare`, what it held is kept to compare.
   MapPhotons& refill(uint32_t frame, bool compare);
-  // Once the slot is traced: the tree stands if the slot holds what it held, else is rebuilt.
-  void update(uint32_t leaf_size);
+  // This frame's slot as it is, for a refill that may leave it so (a filled ring's).
+  MapPhotons& revisit(uint32_t frame);
+  // Once the slot is traced: the tree stands if the slot holds what it held (`unchanged`: the
+  // caller knows it does, having left the slot as it was), else is rebuilt.
+  void update(uint32_t leaf_size, bool unchanged = false);
 
   const PhotonRing& ring() const { return ring_; }
   const PhotonKdTree& tree() const { return tree_; }

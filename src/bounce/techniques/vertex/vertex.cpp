@@ -126,6 +126,8 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     moving_.reset(uint32_t(s.accumulation_frames));
     moving_lights_.clear();
     frame_ = 0;
+    still_traced_.assign(size_t(std::max(s.accumulation_frames, 1)), 0);
+    still_fresh_since_ = 0;
   }
   started_ = true;
   // A light that moved (or changed) since the ring restarted keeps its photons apart from then
@@ -133,6 +135,7 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
   // flashlight does with the camera. The two trees are searched as one, so where a photon is
   // kept changes no estimate, only what has to be rebuilt. (A light added or removed starts the
   // flags again: they follow the lights' indices.)
+  const std::vector<uint8_t> moving_before = moving_lights_;
   if (moving_lights_.size() != c.scene.lights.size() ||
       last_lights_.size() != c.scene.lights.size())
     moving_lights_.assign(c.scene.lights.size(), 0);
@@ -140,6 +143,11 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     for (size_t l = 0; l < c.scene.lights.size(); ++l)
       if (!(c.scene.lights[l] == last_lights_[l])) moving_lights_[l] = 1;
   last_lights_ = c.scene.lights;
+  // The still lights' photons of a slot traced before this frame are those a retrace would give
+  // only if nothing they depend on changed since: geometry, materials, which lights move (a
+  // still light that changes joins them), the settings.
+  if (!may_keep || c.change.materials || moving_lights_ != moving_before)
+    still_fresh_since_ = frame_ + 1;
   // At rest with accumulation, each frame's photons are a fresh set (the frames the pipeline
   // averages are then independent); otherwise the frame-coherent sets.
   rest_pass_ = c.continue_accumulation() ? rest_pass_ + 1 : 0;
@@ -165,20 +173,34 @@ void VertexPhotonMapping::prepare(const PrepareContext& c) {
     ps.moving = moving_lights_;
     // With the ring full, this frame's slot replaces photons the tree holds.
     may_keep = may_keep && ring().filled() == ring().frames();
-    MapPhotons& slot = still_.refill(frame_, may_keep);
+    // Frame-coherent paths of the still lights, traced into this slot since the last change,
+    // would retrace themselves: they are kept, and only the moving lights' paths traced.
+    const uint32_t slot_index = frame_ % ring().frames();
+    const uint32_t traced = still_traced_[slot_index];
+    ps.reuse_still = may_keep && ps.variant == 0 && traced != 0 && traced >= still_fresh_since_;
+    const size_t held = ring().slot(slot_index).size();
+    MapPhotons& slot = ps.reuse_still ? still_.revisit(frame_) : still_.refill(frame_, may_keep);
     MapPhotons& moving_slot = moving_.refill(frame_, may_keep);
     const VertexPhotonStats stats =
         tracer_.trace(c.scene, c.scene_view, c.tracer, ps, slot, &moving_slot);
+    reused_ = stats.reused;
+    if (stats.emission_changed) still_fresh_since_ = frame_ + 1;
+    // A fresh set at rest (variant) is not the slot's frame-coherent one.
+    still_traced_[slot_index] = ps.variant == 0 ? frame_ + 1 : 0;
     c.counters.photon_paths += stats.paths;
     c.counters.photons_stored += stats.stored;
     c.counters.rays += stats.rays;
+    if (stats.reused) {
+      c.counters.photons_reused += held;
+      c.counters.photons_stored += held;
+    }
   }
   ++frame_;
   {
     ScopedStage stage(c.times, "prepare/kd-tree");
     // Frame-coherent photons retrace the same paths while nothing moved: then a ring holds what
     // it held, and the tree built on it stands.
-    still_.update(uint32_t(s.stop_recursion_size));
+    still_.update(uint32_t(s.stop_recursion_size), reused_);
     moving_.update(uint32_t(s.stop_recursion_size));
   }
 

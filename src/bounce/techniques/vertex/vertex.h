@@ -85,6 +85,9 @@ class VertexPhotonMapping final : public Technique {
   // those they replaced); that of the moving lights' photons.
   bool kept_tree() const { return still_.kept(); }
   bool kept_moving_tree() const { return moving_.kept(); }
+  // Whether the last frame kept the still lights' photons of its slot instead of retracing
+  // them (their frame-coherent paths, with nothing they depend on changed since they were traced).
+  bool reused_still_photons() const { return reused_; }
 
  private:
   // Sizes the per-pixel and per-slot buffers for the context's G-buffer and the refined mesh;
@@ -102,6 +105,11 @@ class VertexPhotonMapping final : public Technique {
   // The scene's lights last frame, and per light whether it moved since the ring restarted.
   std::vector<Light> last_lights_;
   std::vector<uint8_t> moving_lights_;
+  // Per ring slot, 1 + the frame its still lights' frame-coherent photons were traced in (0:
+  // never, or a fresh set at rest); slots traced before still_fresh_since_ - 1 are out of date.
+  std::vector<uint32_t> still_traced_;
+  uint32_t still_fresh_since_ = 0;
+  bool reused_ = false;
   EstimateSettings estimate_;
   uint32_t frame_ = 0;      // frames since the ring was reset
   uint32_t rest_pass_ = 0;  // frames at rest since the last change

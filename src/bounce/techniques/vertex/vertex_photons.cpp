@@ -66,9 +66,14 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
                                             const VertexPhotonSettings& settings, MapPhotons& out,
                                             MapPhotons* moving_out) {
   VertexPhotonStats stats;
-  out.clear();
   if (moving_out) moving_out->clear();
   const PhotonEmitters emitters = PhotonEmitters::from(scene);
+  // Where every path of this slot starts.
+  const std::vector<uint32_t> counts = paths_per_emitter(emitters.picker.pmf, settings.photons);
+  stats.emission_changed = counts != last_counts_;
+  last_counts_ = counts;
+  stats.reused = settings.reuse_still && moving_out && !stats.emission_changed;
+  if (!stats.reused) out.clear();
   if (emitters.empty() || settings.photons == 0) return stats;
   const uint32_t frames = std::max(settings.frames, 1u);
   const uint32_t slot = settings.slot % frames;
@@ -87,8 +92,9 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
                                            : vec2(bits_to_unit_float(hash_u32(variant_hash ^ 1u)),
                                                   bits_to_unit_float(hash_u32(variant_hash ^ 2u)));
 
-  // Where every path of this slot starts.
-  const std::vector<uint32_t> counts = paths_per_emitter(emitters.picker.pmf, settings.photons);
+  const auto moves = [&](uint32_t emitter) {
+    return moving_out && emitter < settings.moving.size() && settings.moving[emitter] != 0;
+  };
   starts_.clear();
   path_ids_.clear();
   uint32_t first_id = 0;
@@ -96,6 +102,10 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
     const uint32_t c = counts[l];
     if (c == 0) continue;
     const uint32_t n = c * frames;  // the emitter's whole set over the ring
+    if (stats.reused && !moves(l)) {
+      first_id += n;  // (the path ids of the emitters after it stay as they were)
+      continue;
+    }
     int kind = kCosine;
     float z_lo = 0.0f;
     vec3 power(0.0f);
@@ -145,9 +155,6 @@ VertexPhotonStats VertexPhotonTracer::trace(const Scene& scene, const SceneView&
   const size_t chunk_count = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
   if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
   if (moving_chunks_.size() < chunk_count) moving_chunks_.resize(chunk_count);
-  const auto moves = [&](uint32_t emitter) {
-    return moving_out && emitter < settings.moving.size() && settings.moving[emitter] != 0;
-  };
   std::vector<uint64_t> rays(chunk_count, 0);
   parallel_for(
       chunk_count,

@@ -42,12 +42,20 @@ struct VertexPhotonSettings {
   // Per emitter (LightPicker entry): 1 for a light that moves, whose photons trace() keeps apart
   // (the flashlight). Empty, or missing entries: the light stays put.
   std::vector<uint8_t> moving;
+  // Trace only the emitters `moving` flags, leaving `out` as it is: the caller holds the other
+  // emitters' photons of this slot from the last time it was traced, which retracing would give
+  // again (frame-coherent paths with nothing they depend on changed). Ignored, and every path
+  // traced, when the paths per emitter differ from the last trace's (a light's power changed).
+  bool reuse_still = false;
 };
 
 struct VertexPhotonStats {
-  uint64_t paths = 0;
-  uint64_t stored = 0;
+  uint64_t paths = 0;   // traced
+  uint64_t stored = 0;  // by the traced paths
   uint64_t rays = 0;
+  bool reused = false;  // settings.reuse_still took effect: `out` was left as it was
+  // The paths per emitter differ from the last trace's: every path of the slot is new.
+  bool emission_changed = false;
 };
 
 class VertexPhotonTracer {
@@ -69,6 +77,7 @@ class VertexPhotonTracer {
   std::vector<VertexPathStart> starts_;
   std::vector<uint32_t> path_ids_;
   std::vector<MapPhotons> chunks_, moving_chunks_;
+  std::vector<uint32_t> last_counts_;  // paths per emitter of the last trace
 };
 
 }  // namespace bounce
