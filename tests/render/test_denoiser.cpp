@@ -505,6 +505,30 @@ TEST(Denoiser, EmissionSeenAtRestIsAveragedWithTheFrames) {
   expect_near_rel(out.direct.at(1, 1), sum / float(frames), 1e-5f, "edge pixel");
 }
 
+// Frames that all restart the history (accumulation off) skip the rest averages a reset would
+// start for a later frame: the frames are the same bytes. Half of the image is an emitter with
+// albedo varying across it, where the rest average's factor and emission would enter.
+TEST(Denoiser, ResetsWhoseHistoryNoFrameContinuesGiveTheSameFrames) {
+  const int w = 24, h = 16;
+  Denoiser kept, dropped;
+  Pcg32 rng(7, 1);
+  for (int k = 0; k < 3; ++k) {
+    GBuffer g = plane(w, h);
+    for (int i = 0; i < w * h; ++i) {
+      g.albedo[size_t(i)] = vec3(0.2f + 0.6f * float(i % w) / float(w), 0.5f, 0.3f);
+      if (i % w < w / 2) g.emission[size_t(i)] = vec3(2.0f, 1.0f, 0.5f);
+    }
+    const Image direct = noisy(w, h, rng, 0.5f, [](int, int) { return 1.0f; });
+    const Image indirect = noisy(w, h, rng, 0.8f, [](int, int) { return 0.3f; });
+    StageTimes times;
+    Output a{direct, indirect}, b{direct, indirect};
+    kept.run({g, HistoryState::kReset, false, times, true}, a.direct, &a.indirect);
+    dropped.run({g, HistoryState::kReset, false, times, false}, b.direct, &b.indirect);
+    ASSERT_EQ(a.direct.pixels(), b.direct.pixels()) << k;
+    ASSERT_EQ(a.indirect.pixels(), b.indirect.pixels()) << k;
+  }
+}
+
 // Indirect light a technique accumulates itself keeps a short history: accumulated_history
 // frames while the camera moves, one at rest (the technique's own average is the history there).
 TEST(Denoiser, AccumulatedIndirectLightKeepsItsCap) {

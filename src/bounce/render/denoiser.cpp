@@ -536,7 +536,7 @@ struct Denoiser::Buffers {
   Planes<6> rest;                   // RestPlanes: factor rgb, emission rgb
   // This frame's demodulated light where the history is clipped (denoise::store_demodulated).
   Planes<denoise::kDemodulatedPlanes> demodulated;
-  Planes<5> box;                    // its moments summed along rows, for the spatial variance
+  Planes<5> box;  // its moments summed along rows, for the spatial variance
   std::vector<float> depth_slope;
   std::vector<uint8_t> row_short;  // per row: some pixel's history is short
   std::vector<uint8_t> row_box;    // per row: its box sums are needed
@@ -734,7 +734,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.prev_height = prev_height;
     temporal.s = temporal_settings;
     // Rest averages start at a reset (the first frame of a still) and continue at rest.
-    const bool update_rest = rest || state == HistoryState::kReset;
+    const bool update_rest = rest || (state == HistoryState::kReset && frame.history_continues);
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     if (temporal_settings.history && temporal_settings.clip) {
@@ -751,7 +751,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       update_rest ? temporal_pass<false, true>(temporal, demodulated, b.row_short)
                   : temporal_pass<false, false>(temporal, demodulated, b.row_short);
   }
-  b.rest_valid = rest || state == HistoryState::kReset;
+  b.rest_valid = rest || (state == HistoryState::kReset && frame.history_continues);
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
   // changed); saturates.
   b.rest_frames = rest && !resized ? denoise::next_count(b.rest_frames) : 0;

@@ -105,6 +105,9 @@ struct DenoiseFrame {
   HistoryState state;
   bool indirect_accumulated;  // the technique accumulates its indirect light (capped history)
   StageTimes& times;          // sub-stages "denoise/..."
+  // Whether a later frame may continue this one's history. Without (every frame a reset:
+  // FrameSettings::accumulate off) a reset does not start the rest averages no frame will read.
+  bool history_continues = true;
 };
 
 class Denoiser {

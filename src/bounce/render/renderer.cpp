@@ -207,10 +207,11 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   if (indirect) {
     if (!band_stage.empty()) f.times.add(band_stage, band_ms);
     ScopedStage stage(f.times, "indirect");
-    // Reused frame to frame (a fresh 3 MB image each frame costs page faults), zeroed.
+    // Reused frame to frame (a fresh 3 MB image each frame costs page faults), zeroed unless the
+    // technique writes every pixel.
     if (f.indirect.width() != w || f.indirect.height() != h)
       f.indirect = Image(w, h);
-    else  // on every core (11 MB at 1280 x 720)
+    else if (!technique_->indirect_overwrites())  // on every core (11 MB at 1280 x 720)
       parallel_for(
           f.indirect.pixel_count(), [&](size_t i) { f.indirect.pixels()[i] = vec3(0.0f); }, 16384);
     technique_->indirect(context, f.indirect);
@@ -226,7 +227,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     denoiser_.keep_motion(settings.view == DenoiseView::kMotion);
     const DenoiseFrame frame{f.gbuffer, history,
                              technique_->indirect_history() == IndirectHistory::kAccumulated,
-                             f.times};
+                             f.times, settings.accumulate};
     denoiser_.run(frame, f.direct, indirect ? &f.indirect : nullptr);
   }
   {
