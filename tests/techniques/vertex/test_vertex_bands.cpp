@@ -1,7 +1,9 @@
 // Technique `vertex` locates each pixel's refined triangle band by band inside the renderer's
 // G-buffer pass (Technique::begin_gbuffer_bands): the indirect light must be what indirect()
-// gives when it locates every pixel itself.
+// gives when it locates every pixel itself, into an image it is not given zeroed.
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
@@ -29,7 +31,11 @@ TEST(VertexBands, LocatingInTheGBufferPassChangesNothing) {
   TechniqueCounters counters;
   const FrameContext context{scene, data.view(), *run.tracer, f.gbuffer, rays,
                              none,  false,       1,           times,     counters};
+  // The technique assigns every pixel (indirect_overwrites): the renderer does not zero the
+  // image first, so whatever it held must not show through.
+  ASSERT_TRUE(run.technique->indirect_overwrites());
   Image alone(f.gbuffer.width, f.gbuffer.height);
+  for (vec3& p : alone.pixels()) p = vec3(std::numeric_limits<float>::quiet_NaN());
   run.technique->indirect(context, alone);
   EXPECT_GT(times.get("indirect/locate"), 0.0);
   double sum = 0.0;

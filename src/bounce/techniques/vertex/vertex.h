@@ -66,6 +66,7 @@ class VertexPhotonMapping final : public Technique {
   void gbuffer_band(int x0, int y0, int x1, int y1) override;
   // Estimates at the keys of the refined triangles the pixels see, and interpolates them.
   void indirect(const FrameContext& context, Image& out) override;
+  bool indirect_overwrites() const override { return true; }  // (the interpolation)
 
   VertexSettings& settings() { return settings_; }
   const VertexSettings& settings() const { return settings_; }
