@@ -166,10 +166,11 @@ void run_bench(BenchOptions o) {
   if (record.photons_stored > 0)
     fmt::print(
         "photons per frame            {:>10.0f}    ({:.0f} paths traced, {:.0f} photons of "
-        "unchanged paths kept; {:.2f} M stored/s)\n",
+        "unchanged paths kept; {:.2f} M traced and stored/s)\n",
         record.photons_stored / o.frames, record.photon_paths / o.frames,
         record.photons_reused / o.frames,
-        record.photons_stored / (stats.rows().back().mean_ms * o.frames * 1e3));
+        (record.photons_stored - record.photons_reused) /
+            (stats.rows().back().mean_ms * o.frames * 1e3));
   // The estimate is what the memory check before the first frame allowed for: exact for
   // buffers sized up front (lhb), an upper bound where photon counts vary (vertex), so the
   // process's resident memory is printed beside it.
