@@ -714,6 +714,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   }
   Planes<8>& prev_history = in_place ? b.history : b.prev_history;
   std::vector<float>& prev_length = in_place ? history_length_ : b.prev_length;
+  // Rest averages start at a reset (the first frame of a still; unless no frame will continue
+  // its history) and continue at rest.
+  const bool update_rest = rest || (state == HistoryState::kReset && frame.history_continues);
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;
@@ -733,8 +736,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.prev_width = prev_width;
     temporal.prev_height = prev_height;
     temporal.s = temporal_settings;
-    // Rest averages start at a reset (the first frame of a still) and continue at rest.
-    const bool update_rest = rest || (state == HistoryState::kReset && frame.history_continues);
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     if (temporal_settings.history && temporal_settings.clip) {
@@ -751,7 +752,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       update_rest ? temporal_pass<false, true>(temporal, demodulated, b.row_short)
                   : temporal_pass<false, false>(temporal, demodulated, b.row_short);
   }
-  b.rest_valid = rest || (state == HistoryState::kReset && frame.history_continues);
+  b.rest_valid = update_rest;
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
   // changed); saturates.
   b.rest_frames = rest && !resized ? denoise::next_count(b.rest_frames) : 0;

@@ -47,19 +47,18 @@ struct Candidate {
   uint32_t index = PrimaryRaster::kNone;  // in the raster's triangles()
   uint32_t mesh = 0, triangle = 0, id = 0;
   bool cutouts = false;
-  SurfaceTriangle surface;
-  TriangleFromOrigin test;  // for rays from the camera
+  // (Value-initialised: GCC cannot see that load() fills them before the first use.)
+  SurfaceTriangle surface{};
+  TriangleFromOrigin test{};  // for rays from the camera
 
   void load(const SceneView& scene, const PrimaryRaster& raster, uint32_t c, vec3 eye) {
     const RasterTriangle& r = raster.triangles()[c];
-    const MeshView& m = scene.meshes[r.mesh];
-    const MaterialRecord& material = scene.materials[m.materials[r.triangle]];
     index = c;
     mesh = r.mesh;
     triangle = r.triangle;
     id = scene.triangle_id(r.mesh, r.triangle);
-    cutouts = material.has_cutouts();
-    surface = surface_triangle(m, material, r.triangle);
+    surface = surface_triangle(scene, r.mesh, r.triangle);
+    cutouts = surface.material->has_cutouts();
     test = TriangleFromOrigin::make(surface.p0, surface.p1, surface.p2, eye);
   }
 };

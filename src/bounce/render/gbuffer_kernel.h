@@ -52,11 +52,8 @@ BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const 
     g.store(i, none);
     return;
   }
-  const MeshView& mesh = scene.meshes[hit.mesh];
-  gbuffer_triangle_pixel(
-      scene, forward, ray, hit,
-      surface_triangle(mesh, scene.materials[mesh.materials[hit.triangle]], hit.triangle),
-      scene.triangle_id(hit.mesh, hit.triangle), i, g);
+  gbuffer_triangle_pixel(scene, forward, ray, hit, surface_triangle(scene, hit.mesh, hit.triangle),
+                         scene.triangle_id(hit.mesh, hit.triangle), i, g);
 }
 
 }  // namespace bounce

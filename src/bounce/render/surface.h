@@ -50,6 +50,13 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceTriangle surface_triangle(const MeshView& me
   return t;
 }
 
+// Triangle `triangle` of the scene's mesh `mesh`, with its material.
+BOUNCE_HD BOUNCE_LANE_INLINE SurfaceTriangle surface_triangle(const SceneView& scene, uint32_t mesh,
+                                                              uint32_t triangle) {
+  const MeshView& m = scene.meshes[mesh];
+  return surface_triangle(m, scene.materials[m.materials[triangle]], triangle);
+}
+
 // The surface at barycentric (b1, b2) of triangle t for a ray travelling along `direction`;
 // `textures[i].sample(uv)` reads the scene's textures, or with kMeanTextures their means
 // (material_at; no normal map then). The one implementation behind every surface_at form.
@@ -106,8 +113,7 @@ BOUNCE_HD SurfaceHit surface_on(const MeshView& mesh, const MaterialRecord& mate
 // (kMeanTextures: surface_on's).
 template <bool kMeanTextures = false>
 BOUNCE_HD inline SurfaceHit surface_at(const SceneView& scene, const Hit& hit, vec3 direction) {
-  const MeshView& mesh = scene.meshes[hit.mesh];
-  return surface_on<kMeanTextures>(mesh, scene.materials[mesh.materials[hit.triangle]], hit,
+  return surface_on<kMeanTextures>(surface_triangle(scene, hit.mesh, hit.triangle), hit.barycentric,
                                    direction, scene.textures);
 }
 SurfaceHit surface_at(const Scene& scene, const Hit& hit, vec3 direction);
