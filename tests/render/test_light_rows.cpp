@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 
 #include "bounce/core/rng.h"
 #include "bounce/render/direct.h"
@@ -120,8 +121,8 @@ TEST(PunctualLightLane, EqualsTheLightSampleAndItsShading) {
 
 // The Cornell box, its tall box glossy so the GGX lobe is in the rows too; with `punctual`, also
 // lit by a point light, a spot from the camera whose cone edge crosses the back wall, the sun
-// through the open front, and a glowing strip of 13 triangles of unequal areas on the left wall
-// (an area light whose triangle table takes several search steps).
+// through the open front, and glowing strips of 13 and 21 triangles of unequal areas on the left
+// wall (area lights whose triangle tables the row loop scans, and searches in several steps).
 struct CornellDirect {
   static constexpr int kSize = 48;
   Scene scene;
@@ -142,21 +143,25 @@ struct CornellDirect {
       glow.albedo = vec3(0.0f);
       glow.emission = vec3(2.0f, 3.0f, 1.0f);
       s.materials.push_back(glow);
-      Mesh strip;
-      strip.name = "strip";
-      // A fan just inside the wall at x = 0.556 (the left one on screen): vertices along two lines.
-      float z = 0.05f;
-      for (int t = 0; t <= 13; ++t) {
-        strip.positions.push_back(vec3(0.54f, 0.1f + 0.02f * float(t % 3), z));
-        strip.positions.push_back(vec3(0.54f, 0.4f, z));
-        z += 0.01f + 0.006f * float((t * 7) % 5);
+      // Fans just inside the wall at x = 0.556 (the left one on screen), one behind the other:
+      // vertices along two lines.
+      for (const uint32_t triangles : {13u, 21u}) {
+        Mesh strip;
+        strip.name = "strip" + std::to_string(triangles);
+        const bool first = triangles == 13;
+        float z = first ? 0.05f : 0.345f;
+        for (uint32_t t = 0; t <= triangles; ++t) {
+          strip.positions.push_back(vec3(0.54f, 0.1f + 0.02f * float(t % 3), z));
+          strip.positions.push_back(vec3(0.54f, 0.4f, z));
+          z += first ? 0.01f + 0.006f * float((t * 7) % 5) : 0.004f + 0.003f * float((t * 7) % 5);
+        }
+        for (uint32_t t = 0; t < triangles; ++t) {
+          // Wound so the face normal points to -x, into the room.
+          strip.triangles.push_back(uvec3(2 * t, 2 * t + 2, 2 * t + 1));
+          strip.materials.push_back(uint32_t(s.materials.size() - 1));
+        }
+        s.meshes.push_back(strip);
       }
-      for (uint32_t t = 0; t < 13; ++t) {
-        // Wound so the face normal points to -x, into the room.
-        strip.triangles.push_back(uvec3(2 * t, 2 * t + 2, 2 * t + 1));
-        strip.materials.push_back(uint32_t(s.materials.size() - 1));
-      }
-      s.meshes.push_back(strip);
     }
     for (MaterialRecord& m : s.materials)
       if (max_component(m.emission) <= 0.0f && m.albedo.x > 0.5f && m.albedo.y > 0.5f) {
@@ -224,8 +229,9 @@ TEST(AreaLightRows, EqualThePerPixelKernel) {
 TEST(LightRows, PointSpotSunAndAreaLightsEqualThePerPixelKernel) {
   const CornellDirect c(/*punctual=*/true);
   ASSERT_EQ(c.data.view().light_count, 3u);
-  ASSERT_EQ(c.data.view().area_light_count, 2u);
+  ASSERT_EQ(c.data.view().area_light_count, 3u);
   EXPECT_EQ(c.data.view().area_lights[1].triangle_count, 13u);
+  EXPECT_EQ(c.data.view().area_lights[2].triangle_count, 21u);
   expect_rows_equal_per_pixel(c);
   // Each punctual light adds light somewhere: the frame without them is darker.
   const CornellDirect area_only;

@@ -20,13 +20,17 @@ struct CdfSample {
 // that the caller can reuse the same number inside the entry and keep its stratification.
 // Written as selects over loads that are always valid (entry 0 reads its own entry as the one
 // before, then takes 0), so a row of pixels' stretches vectorise (render/direct.cpp).
-BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
-  const float before = cdf[entry - uint32_t(entry != 0)];
-  const float start = entry == 0 ? 0.0f : before;
-  const float span = cdf[entry] - start;
+// The same from the entry's interval [start, end): cdf[entry - 1] (0 for entry 0) and cdf[entry].
+BOUNCE_HD inline float cdf_stretch_within(float start, float end, float u) {
+  const float span = end - start;
   // The clamp keeps u below 1 when rounding (or u past the table's end) would reach it.
   const float stretched = glm::clamp((u - start) / span, 0.0f, 0.99999994f);
   return span > 0.0f ? stretched : 0.5f;
+}
+BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
+  const float before = cdf[entry - uint32_t(entry != 0)];
+  const float start = entry == 0 ? 0.0f : before;
+  return cdf_stretch_within(start, cdf[entry], u);
 }
 
 // Entry k owns [cdf[k - 1], cdf[k]) (cdf[-1] = 0), so u on a boundary goes to the entry above it

@@ -172,31 +172,72 @@ std::vector<float> area_light_corners(const SceneView& scene, const AreaLightVie
   return planes;
 }
 
-// Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
-// the searches of the light's triangle table run in lockstep (sample_cdf's steps, one at a time
-// for every pixel: no branch to mispredict, and the pixels' loads overlap), then each pixel's
-// point on its triangle (area_light_point_at's, from `corners`: area_light_corners').
-void pick_area_light_row(const AreaLightView& light, const float* corners, int k, int n, int width,
-                         LightRow& row) {
-  const float* cdf = light.cdf;
-  const uint32_t count = light.triangle_count;
-  for (int j = 0; j < width; ++j) {
-    row.u[j] = pattern_sample(k, n, row.offset[j]);
-    row.base[j] = 0;
-  }
+// The searches of a light's cdf (count entries) for the row's u.x, into row.base (the entries)
+// and `stretched` (u.x stretched within them): in lockstep (sample_cdf's steps, one at a time for
+// every pixel: no branch to mispredict, and the pixels' loads overlap).
+void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
+  for (int j = 0; j < width; ++j) row.base[j] = 0;
   for_cdf_halves(count, [&](uint32_t half) {
     for (int j = 0; j < width; ++j) row.base[j] = cdf_halve(cdf, row.base[j], half, row.u[j].x);
   });
-  // Two loops, each of which vectorises: the entries and stretched coordinates, then the points.
-  float stretched[LightRow::kWidth], uy[LightRow::kWidth];
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
     const float ux = row.u[j].x;
     const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
     row.base[j] = entry;
     stretched[j] = cdf_stretch(cdf, entry, ux);
-    uy[j] = row.u[j].y;
   }
+}
+
+// The same for a table of at most kScannedCdf entries, without gathers: u.x is compared with each
+// value in turn, one value for the whole row. The entry is the count of values at or below u.x
+// (the cdf does not decrease, so that is the search's), its interval runs from the largest of them
+// to the smallest above; u.x at or past the last value (rounding) takes the last entry, as
+// cdf_entry does. The same entries and stretches as search_cdf_row.
+constexpr uint32_t kScannedCdf = 16;
+void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
+  float ux[LightRow::kWidth], start[LightRow::kWidth], end[LightRow::kWidth];
+  for (int j = 0; j < width; ++j) {
+    ux[j] = row.u[j].x;  // (a plane: each value's pass reads it)
+    row.base[j] = 0;
+    start[j] = 0.0f;
+    end[j] = std::numeric_limits<float>::infinity();
+  }
+  for (uint32_t t = 0; t < count; ++t) {
+    const float c = cdf[t];
+    BOUNCE_IVDEP
+    for (int j = 0; j < width; ++j) {
+      const bool below = c <= ux[j];
+      row.base[j] += uint32_t(below);
+      start[j] = pick(below, c, start[j]);
+      end[j] = pick(below, end[j], glm::min(end[j], c));
+    }
+  }
+  const uint32_t last = count - 1;
+  const float last_start = last > 0 ? cdf[last - 1] : 0.0f, last_end = cdf[last];
+  BOUNCE_IVDEP
+  for (int j = 0; j < width; ++j) {
+    const bool past = row.base[j] > last;
+    row.base[j] = pick(past, last, row.base[j]);
+    stretched[j] = cdf_stretch_within(pick(past, last_start, start[j]),
+                                      pick(past, last_end, end[j]), ux[j]);
+  }
+}
+
+// Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
+// each pixel's entry in the light's triangle table (scanned or searched), then its point on that
+// triangle (area_light_point_at's, from `corners`: area_light_corners').
+void pick_area_light_row(const AreaLightView& light, const float* corners, int k, int n, int width,
+                         LightRow& row) {
+  const float* cdf = light.cdf;
+  const uint32_t count = light.triangle_count;
+  for (int j = 0; j < width; ++j) row.u[j] = pattern_sample(k, n, row.offset[j]);
+  float stretched[LightRow::kWidth], uy[LightRow::kWidth];
+  if (count <= kScannedCdf)
+    scan_cdf_row(cdf, count, width, row, stretched);
+  else
+    search_cdf_row(cdf, count, width, row, stretched);
+  for (int j = 0; j < width; ++j) uy[j] = row.u[j].y;
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
     const uint32_t e = row.base[j];
