@@ -16,17 +16,18 @@ struct CdfSample {
   float u = 0.0f;  // the sample stretched back over [0, 1) within the entry's interval
 };
 
-// u, which fell in the interval of `entry`, stretched back over [0, 1) within that interval, so
-// that the caller can reuse the same number inside the entry and keep its stratification.
-// Written as selects over loads that are always valid (entry 0 reads its own entry as the one
-// before, then takes 0), so a row of pixels' stretches vectorise (render/direct.cpp).
-// The same from the entry's interval [start, end): cdf[entry - 1] (0 for entry 0) and cdf[entry].
+// u, which fell in an entry's interval [start, end) (cdf[entry - 1], 0 for entry 0, and
+// cdf[entry]), stretched back over [0, 1) within it, so that the caller can reuse the same number
+// inside the entry and keep its stratification.
 BOUNCE_HD inline float cdf_stretch_within(float start, float end, float u) {
   const float span = end - start;
   // The clamp keeps u below 1 when rounding (or u past the table's end) would reach it.
   const float stretched = glm::clamp((u - start) / span, 0.0f, 0.99999994f);
   return span > 0.0f ? stretched : 0.5f;
 }
+// The same for `entry` of the table. Written as selects over loads that are always valid (entry 0
+// reads its own entry as the one before, then takes 0), so a row of pixels' stretches vectorise
+// (render/direct.cpp).
 BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
   const float before = cdf[entry - uint32_t(entry != 0)];
   const float start = entry == 0 ? 0.0f : before;

@@ -193,7 +193,8 @@ void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, 
 // value in turn, one value for the whole row. The entry is the count of values at or below u.x
 // (the cdf does not decrease, so that is the search's), its interval runs from the largest of them
 // to the smallest above; u.x at or past the last value (rounding) takes the last entry, as
-// cdf_entry does. The same entries and stretches as search_cdf_row.
+// cdf_entry does. The same entries and stretches as search_cdf_row. (Scanning a level's 36-entry
+// table was slower than its search: docs/benchmarks.md.)
 constexpr uint32_t kScannedCdf = 16;
 void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
   float ux[LightRow::kWidth], start[LightRow::kWidth], end[LightRow::kWidth];
@@ -219,8 +220,8 @@ void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, fl
   for (int j = 0; j < width; ++j) {
     const bool past = row.base[j] > last;
     row.base[j] = pick(past, last, row.base[j]);
-    stretched[j] = cdf_stretch_within(pick(past, last_start, start[j]),
-                                      pick(past, last_end, end[j]), ux[j]);
+    stretched[j] =
+        cdf_stretch_within(pick(past, last_start, start[j]), pick(past, last_end, end[j]), ux[j]);
   }
 }
 
