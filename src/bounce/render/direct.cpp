@@ -190,21 +190,22 @@ void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, 
 }
 
 // The same for a table of at most kScannedCdf entries, without gathers: u.x is compared with each
-// value in turn, one value for the whole row. The entry is the count of values at or below u.x
-// (the cdf does not decrease, so that is the search's), its interval runs from the largest of them
-// to the smallest above; u.x at or past the last value (rounding) takes the last entry, as
-// cdf_entry does. The same entries and stretches as search_cdf_row. (Scanning a level's 36-entry
-// table was slower than its search: docs/benchmarks.md.)
+// value but the last in turn, one value for the whole row. The entry is the count of values at or
+// below u.x (the cdf does not decrease, so that is the search's; u.x at or past them all takes the
+// last entry, as cdf_entry does), its interval runs from the largest of them to the smallest
+// above, or to the last value. The same entries and stretches as search_cdf_row. (Scanning a
+// level's 36-entry table was slower than its search: docs/benchmarks.md.)
 constexpr uint32_t kScannedCdf = 16;
 void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
+  const uint32_t last = count - 1;
   float ux[LightRow::kWidth], start[LightRow::kWidth], end[LightRow::kWidth];
   for (int j = 0; j < width; ++j) {
     ux[j] = row.u[j].x;  // (a plane: each value's pass reads it)
     row.base[j] = 0;
     start[j] = 0.0f;
-    end[j] = std::numeric_limits<float>::infinity();
+    end[j] = cdf[last];
   }
-  for (uint32_t t = 0; t < count; ++t) {
+  for (uint32_t t = 0; t < last; ++t) {
     const float c = cdf[t];
     BOUNCE_IVDEP
     for (int j = 0; j < width; ++j) {
@@ -214,15 +215,8 @@ void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, fl
       end[j] = pick(below, end[j], glm::min(end[j], c));
     }
   }
-  const uint32_t last = count - 1;
-  const float last_start = last > 0 ? cdf[last - 1] : 0.0f, last_end = cdf[last];
   BOUNCE_IVDEP
-  for (int j = 0; j < width; ++j) {
-    const bool past = row.base[j] > last;
-    row.base[j] = pick(past, last, row.base[j]);
-    stretched[j] =
-        cdf_stretch_within(pick(past, last_start, start[j]), pick(past, last_end, end[j]), ux[j]);
-  }
+  for (int j = 0; j < width; ++j) stretched[j] = cdf_stretch_within(start[j], end[j], ux[j]);
 }
 
 // Sample k of n of an area light's points for the row's n pixels, into row.q and row.q_normal:
