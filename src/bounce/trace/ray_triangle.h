@@ -27,21 +27,29 @@ struct TriangleFromOrigin {
   }
 
   // Whether a ray from the origin along `direction` meets the triangle at a distance in
-  // (tmin, tmax); t and the weights of p1 and p2 (Hit::barycentric) where it does.
-  BOUNCE_HD bool intersect(vec3 direction, float tmin, float tmax, float& t,
-                           vec2& barycentric) const {
+  // (tmin, tmax), without a branch: t and the weights of p1 and p2 (Hit::barycentric) are
+  // written either way, meaningful where it does (a loop over a run of pixels vectorises).
+  BOUNCE_HD BOUNCE_LANE_INLINE bool meets(vec3 direction, float tmin, float tmax, float& t,
+                                          vec2& barycentric) const {
     const vec3 pv = glm::cross(direction, e2);
     const float det = glm::dot(e1, pv);
-    if (glm::abs(det) < 1e-12f) return false;
     const float inv = 1.0f / det;
     const float b1 = glm::dot(tv, pv) * inv;
-    if (b1 < 0.0f || b1 > 1.0f) return false;
     const float b2 = glm::dot(direction, qv) * inv;
-    if (b2 < 0.0f || b1 + b2 > 1.0f) return false;
-    const float d = tq * inv;
-    if (!(d > tmin && d < tmax)) return false;
-    t = d;
+    t = tq * inv;
     barycentric = vec2(b1, b2);
+    return (glm::abs(det) >= 1e-12f) & (b1 >= 0.0f) & (b1 <= 1.0f) & (b2 >= 0.0f) &
+           (b1 + b2 <= 1.0f) & (t > tmin) & (t < tmax);
+  }
+
+  // The same, writing t and the weights only where it meets the triangle.
+  BOUNCE_HD bool intersect(vec3 direction, float tmin, float tmax, float& t,
+                           vec2& barycentric) const {
+    float d;
+    vec2 b;
+    if (!meets(direction, tmin, tmax, d, b)) return false;
+    t = d;
+    barycentric = b;
     return true;
   }
 };
