@@ -17,12 +17,14 @@ namespace bounce {
 
 // Writes pixel i for a primary ray along unit `ray.direction` that met triangle `hit`
 // (hit.valid()), whose surface_triangle is `t` and global id `id`: what gbuffer_pixel writes there.
-// The raster's runs load `t` once for the pixels that see the same triangle.
+// The raster's runs load `t` once for the pixels that see the same triangle; kForm: what the
+// caller knows of it (SurfaceForm).
+template <SurfaceForm kForm = SurfaceForm{}>
 BOUNCE_HD BOUNCE_LANE_INLINE void gbuffer_triangle_pixel(const SceneView& scene, vec3 forward,
                                                          const Ray& ray, const Hit& hit,
                                                          const SurfaceTriangle& t, uint32_t id,
                                                          size_t i, const GBufferView& g) {
-  g.store(i, surface_on(t, hit.barycentric, ray.direction, scene.textures));
+  g.store(i, surface_on<false, kForm>(t, hit.barycentric, ray.direction, scene.textures));
   g.primitive[i] = id;
   g.mesh[i] = hit.mesh;
   g.barycentric[i] = hit.barycentric;

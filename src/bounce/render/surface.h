@@ -57,10 +57,38 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceTriangle surface_triangle(const SceneView& s
   return surface_triangle(m, scene.materials[m.materials[triangle]], triangle);
 }
 
+// What a loop over the pixels of one triangle knows of it before it starts (surface_on's kForm):
+// where `known`, whether it has normals, texture coordinates and a normal map, and its
+// material's form (MaterialForm), so that the loop's lanes have no branch. Unknown (the
+// default), the triangle and its material are read.
+struct SurfaceForm {
+  bool known = false;
+  bool normals = false;
+  bool uvs = false;
+  bool normal_map = false;
+  MaterialForm material;
+
+  BOUNCE_HD static constexpr SurfaceForm of(const SurfaceTriangle& t) {
+    return {true, t.has_normals, t.has_uvs, t.material->normal_texture >= 0,
+            MaterialForm::of(*t.material)};
+  }
+  BOUNCE_HD constexpr bool has_normals(const SurfaceTriangle& t) const {
+    return known ? normals : t.has_normals;
+  }
+  BOUNCE_HD constexpr bool has_uvs(const SurfaceTriangle& t) const {
+    return known ? uvs : t.has_uvs;
+  }
+  BOUNCE_HD constexpr bool has_normal_map(const MaterialRecord& m) const {
+    return known ? normal_map : m.normal_texture >= 0;
+  }
+  constexpr bool operator==(const SurfaceForm&) const = default;
+};
+
 // The surface at barycentric (b1, b2) of triangle t for a ray travelling along `direction`;
 // `textures[i].sample(uv)` reads the scene's textures, or with kMeanTextures their means
-// (material_at; no normal map then). The one implementation behind every surface_at form.
-template <bool kMeanTextures = false, typename Textures>
+// (material_at; no normal map then); kForm: what the caller knows of t (SurfaceForm). The one
+// implementation behind every surface_at form.
+template <bool kMeanTextures = false, SurfaceForm kForm = SurfaceForm{}, typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec2 barycentric,
                                                    vec3 direction, const Textures& textures) {
   const MaterialRecord& material = *t.material;
@@ -74,17 +102,19 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
   // The shading normal as the file has it (interpolated, else the face's), turned to the
   // viewer's side after any normal map: a back face shows the front's perturbation mirrored.
   vec3 normal = face;
-  if (t.has_normals) {
+  if (kForm.has_normals(t)) {
     const vec3 n = b0 * t.n0 + b1 * t.n1 + b2 * t.n2;
     // One division, not glm's three (vec3 / float): they were a tenth of the G-buffer kernel.
+    // Made either way and then chosen: no branch, so a loop over a triangle's pixels vectorises.
     const float len = glm::length(n);
-    if (len > 0.0f) normal = n * (1.0f / len);
+    const vec3 unit = n * (1.0f / len);
+    normal = len > 0.0f ? unit : face;
   }
   vec2 uv(0.0f);
-  if (t.has_uvs) {
+  if (kForm.has_uvs(t)) {
     uv = b0 * t.uv0 + b1 * t.uv1 + b2 * t.uv2;
     TangentFrame frame;
-    if (!kMeanTextures && material.normal_texture >= 0 &&
+    if (!kMeanTextures && kForm.has_normal_map(material) &&
         tangent_frame(t.p0, t.p1, t.p2, t.uv0, t.uv1, t.uv2, normal, frame)) {
       const vec3 mapped = frame.to_world(tangent_space_normal(material, textures, uv));
       const float len = glm::length(mapped);
@@ -93,11 +123,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
   }
   // Interpolated normals live on the same side as the face normal we shade from.
   s.normal = glm::dot(normal, s.geometric_normal) < 0.0f ? -normal : normal;
-  const MaterialPoint m = material_at<kMeanTextures>(material, textures, uv);
+  const MaterialPoint m = material_at<kMeanTextures, kForm.material>(material, textures, uv);
   s.albedo = m.albedo;
   s.f0 = m.f0;
   s.roughness = m.roughness;
-  s.emission = front ? m.emission : vec3(0.0f);
+  s.emission = m.emission * (front ? 1.0f : 0.0f);
   return s;
 }
 

@@ -27,6 +27,7 @@ bool texture_from_image(const tg::Image& image, TextureKind kind, Texture* out) 
     return false;
   if (kind == TextureKind::kAlpha && !has_alpha(image)) return false;
   const size_t pixels = size_t(image.width) * size_t(image.height);
+  if (pixels > size_t(kMaxTexels)) return false;
   const size_t bytes_per_pixel = size_t(image.component) * size_t(image.bits / 8);
   if (image.image.size() / bytes_per_pixel < pixels ||
       image.image.size() != pixels * bytes_per_pixel)

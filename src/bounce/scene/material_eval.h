@@ -36,24 +36,55 @@ BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_or_mean(const Textures& textures, int 
     return texture_at(textures, index, transform, uv);
 }
 
+// Which of a material's textures and workflow a loop knows before it starts (material_at's
+// kForm): where `known`, these stand for the record's own, so that a loop over the pixels of one
+// material has no branch and vectorises (the G-buffer's runs over one triangle). Unknown (the
+// default), the record is read.
+struct MaterialForm {
+  bool known = false;
+  bool albedo_texture = false;
+  bool metallic = false;  // the metallic-roughness workflow
+  bool metal_rough_texture = false;
+  bool emission_texture = false;
+
+  BOUNCE_HD static constexpr MaterialForm of(const MaterialRecord& m) {
+    return {true, m.albedo_texture >= 0, m.metallic_workflow, m.metal_rough_texture >= 0,
+            m.emission_texture >= 0};
+  }
+  BOUNCE_HD constexpr bool has_albedo_texture(const MaterialRecord& m) const {
+    return known ? albedo_texture : m.albedo_texture >= 0;
+  }
+  BOUNCE_HD constexpr bool is_metallic(const MaterialRecord& m) const {
+    return known ? metallic : m.metallic_workflow;
+  }
+  BOUNCE_HD constexpr bool has_metal_rough_texture(const MaterialRecord& m) const {
+    return known ? metal_rough_texture : m.metal_rough_texture >= 0;
+  }
+  BOUNCE_HD constexpr bool has_emission_texture(const MaterialRecord& m) const {
+    return known ? emission_texture : m.emission_texture >= 0;
+  }
+  constexpr bool operator==(const MaterialForm&) const = default;
+};
+
 // The material at uv. kMeanTextures: each texture's mean instead of its texels (photon hits of
 // technique `vertex`, which the seed reflects with a texture's average colour: no texel to fetch
 // from a random place in memory). Inlined, as texture_at is: out of line, its MaterialPoint
 // went back through memory (a level's G-buffer at 1280 x 720: median 37.6 -> 36.0 ms over eight
 // alternated runs each; docs/benchmarks.md).
-template <bool kMeanTextures = false, typename Textures>
+template <bool kMeanTextures = false, MaterialForm kForm = MaterialForm{}, typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
                                                        const Textures& textures, vec2 uv) {
   MaterialPoint p;
-  const vec3 tint = m.albedo_texture >= 0 ? texture_or_mean<kMeanTextures>(
-                                                textures, m.albedo_texture, m.albedo_transform, uv)
-                                          : vec3(1.0f);
+  const vec3 tint =
+      kForm.has_albedo_texture(m)
+          ? texture_or_mean<kMeanTextures>(textures, m.albedo_texture, m.albedo_transform, uv)
+          : vec3(1.0f);
   p.roughness = m.roughness;
-  if (m.metallic_workflow) {
+  if (kForm.is_metallic(m)) {
     // glTF: the metallic-roughness texture's green scales roughness and its blue metallic; a
     // metal's base colour is its specular colour, a dielectric's its diffuse albedo.
     float metallic = m.metallic;
-    if (m.metal_rough_texture >= 0) {
+    if (kForm.has_metal_rough_texture(m)) {
       const vec3 mr = texture_or_mean<kMeanTextures>(textures, m.metal_rough_texture,
                                                      m.metal_rough_transform, uv);
       p.roughness = glm::clamp(p.roughness * mr.y, 0.0f, 1.0f);
@@ -67,7 +98,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
     p.f0 = m.f0;
   }
   p.emission = m.emission;
-  if (m.emission_texture >= 0)
+  if (kForm.has_emission_texture(m))
     p.emission *=
         texture_or_mean<kMeanTextures>(textures, m.emission_texture, m.emission_transform, uv);
   return p;

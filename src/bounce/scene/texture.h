@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct TextureTransform {
 };
 
 // The texels and the lookup, as plain data for kernels; Texture samples through it too.
+// The most texels a texture may have (2^28, what image loading accepts): TextureView::sample
+// indexes its floats with an int, which a loop over pixels then gathers with.
+inline constexpr int64_t kMaxTexels = int64_t(1) << 28;
+
 struct TextureView {
   const vec3* texels = nullptr;  // row-major from the top row, linear RGB
   int width = 0;
@@ -40,7 +45,7 @@ struct TextureView {
   // negative coordinate there. Not finite (NaN, or infinite: inf - inf): 0.
   BOUNCE_HD static float repeat(float u) {
     const float f = u - std::floor(u);
-    return (f >= 0.0f && f <= 1.0f) ? f : 0.0f;
+    return ((f >= 0.0f) & (f <= 1.0f)) ? f : 0.0f;  // no branch: loops over pixels vectorise
   }
 
   // Bilinear, repeat wrapping; (0, 0) is the top-left texel's corner, as in glTF.
@@ -54,7 +59,9 @@ struct TextureView {
     const auto texel = [&](int tx, int ty) {
       tx = tx < 0 ? tx + width : (tx >= width ? tx - width : tx);
       ty = ty < 0 ? ty + height : (ty >= height ? ty - height : ty);
-      return texels[size_t(ty) * size_t(width) + size_t(tx)];
+      const float* t = &texels[0].x;
+      const int k = 3 * (ty * width + tx);  // < 3 * kMaxTexels: no overflow
+      return vec3(t[k], t[k + 1], t[k + 2]);
     };
     return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
                     glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
