@@ -4,15 +4,18 @@
 // geometry closer to the eye than the raster's near plane.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
 
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/gbuffer_kernel.h"
 #include "bounce/render/primary_raster.h"
 #include "bounce/scene/load.h"
 #include "bounce/scene/scene_data.h"
 #include "bounce/trace/tracer.h"
+#include "scene/checker_texture.h"
 #include "scene/hand_built_scenes.h"
 
 namespace bounce {
@@ -82,6 +85,110 @@ void expect_same_surfaces(const Compared& c, double share = 0.999) {
   EXPECT_LT(c.worst_position, 1e-4);
   // The raster proposes the surfaces: a candidate at (nearly) every pixel with a hit.
   EXPECT_GE(double(c.candidates), share * double(c.hits));
+}
+
+// Every field of the raster's G-buffer, at every pixel whose camera ray meets its candidate,
+// against the per-pixel kernel (gbuffer_triangle_pixel, reading the triangle's form) on that
+// candidate: the runs of pixels that share a candidate are evaluated as vector code, eight
+// lanes at a time, whose arithmetic may round differently (fused multiply-adds), never more. (A
+// weight may move by 1e-5 on a far triangle, where the edge test subtracts nearly equal terms;
+// the position it gives stays within 2e-5 of the distance.)
+// Returns the pixels compared.
+size_t expect_runs_equal_the_kernel(const Scene& scene, int w, int h) {
+  const SceneData data = SceneData::from(scene);
+  const SceneView view = data.view();
+  const std::unique_ptr<Tracer> tracer = make_embree_tracer(scene);
+  const CameraRays camera = CameraRays::from(scene.camera, w, h);
+  const vec2 subpixel(0.3f, 0.7f);
+  PrimaryRaster raster;
+  EXPECT_TRUE(raster.build(view, camera, subpixel, w, h));
+  GBuffer rastered, kernel;
+  rastered.resize(w, h);
+  kernel.resize(w, h);
+  build_gbuffer(view, *tracer, camera, subpixel, rastered, &raster);
+  const GBufferView k = kernel.view();
+  size_t compared = 0, mismatched = 0;
+  const auto close = [](vec3 a, vec3 b, float scale) {
+    return glm::length(a - b) <= 2e-5f * std::max(scale, 1.0f);
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = k.index(x, y);
+      const uint32_t c = raster.candidates()[i];
+      if (c == PrimaryRaster::kNone) continue;
+      const RasterTriangle& r = raster.triangles()[c];
+      const SurfaceTriangle t = surface_triangle(view, r.mesh, r.triangle);
+      if (t.material->has_cutouts()) continue;  // traced
+      Ray ray;
+      ray.origin = camera.origin;
+      ray.direction = camera.direction(float(x) + subpixel.x, float(y) + subpixel.y);
+      ray.tmin = 0.0f;
+      Hit hit;
+      hit.mesh = r.mesh;
+      hit.triangle = r.triangle;
+      if (!TriangleFromOrigin::make(t.p0, t.p1, t.p2, camera.origin)
+               .intersect(ray.direction, ray.tmin, ray.tmax, hit.t, hit.barycentric))
+        continue;  // traced
+      gbuffer_triangle_pixel(view, camera.forward, ray, hit, t,
+                             view.triangle_id(r.mesh, r.triangle), i, k);
+      ++compared;
+      const float d = kernel.depth[i];
+      const bool same =
+          rastered.primitive[i] == kernel.primitive[i] && rastered.mesh[i] == kernel.mesh[i] &&
+          close(rastered.position[i], kernel.position[i], d) &&
+          std::abs(rastered.depth[i] - d) <= 2e-5f * std::max(d, 1.0f) &&
+          glm::length(rastered.barycentric[i] - kernel.barycentric[i]) <= 1e-4f &&
+          close(rastered.normal[i], kernel.normal[i], 1.0f) &&
+          close(rastered.geometric_normal[i], kernel.geometric_normal[i], 1.0f) &&
+          close(rastered.albedo[i], kernel.albedo[i], 1.0f) &&
+          close(rastered.f0[i], kernel.f0[i], 1.0f) &&
+          close(rastered.emission[i], kernel.emission[i], max_component(kernel.emission[i])) &&
+          std::abs(rastered.roughness[i] - kernel.roughness[i]) <= 1e-5f;
+      if (!same && ++mismatched <= 3)
+        ADD_FAILURE() << "pixel (" << x << ", " << y << "): triangle " << rastered.primitive[i]
+                      << " against " << kernel.primitive[i] << ", depth " << rastered.depth[i]
+                      << " against " << d << ", barycentric " << rastered.barycentric[i].x << " "
+                      << rastered.barycentric[i].y << " against " << kernel.barycentric[i].x << " "
+                      << kernel.barycentric[i].y << ", albedo " << rastered.albedo[i].x
+                      << " against " << kernel.albedo[i].x << ", emission "
+                      << rastered.emission[i].x << " against " << kernel.emission[i].x;
+    }
+  EXPECT_EQ(mismatched, 0u) << "of " << compared;
+  return compared;
+}
+
+TEST(PrimaryRaster, RunsOfACandidateEqualThePerPixelKernel) {
+  // The Cornell box: flat, untextured surfaces (a form of their own), most pixels in long runs.
+  EXPECT_GT(expect_runs_equal_the_kernel(make_cornell(), 101, 67), 3500u);
+  // Textured quads over the box: one with normals (a level's form), one without and glowing
+  // through an emission texture (a form without a loop of its own, read from the triangle).
+  Scene s = make_cornell();
+  s.textures.push_back(checker_texture());
+  Material painted;
+  painted.albedo = vec3(0.8f);
+  painted.albedo_texture = int(s.textures.size() - 1);
+  s.materials.push_back(painted);
+  painted.emission = vec3(2.0f);
+  painted.emission_texture = painted.albedo_texture;
+  s.materials.push_back(painted);
+  Mesh smooth = scene_test::quad_mesh("smooth", vec3(-0.45f, 0.05f, -0.45f), vec3(0.5f, 0, 0),
+                                      vec3(0, 0.1f, 0.5f), uint32_t(s.materials.size() - 2));
+  smooth.uvs = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
+  smooth.normals.assign(4, glm::normalize(vec3(0.0f, 0.5f, -0.1f)));
+  Mesh glowing = scene_test::quad_mesh("glowing", vec3(0.05f, 0.02f, -0.3f), vec3(0, 0, 0.6f),
+                                       vec3(0.4f, 0, 0), uint32_t(s.materials.size() - 1));
+  glowing.uvs = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  s.meshes.push_back(smooth);
+  s.meshes.push_back(glowing);
+  s.finalize();
+  EXPECT_GT(expect_runs_equal_the_kernel(s, 90, 90), 4000u);
+  // Many small triangles: short runs, most of them shorter than a block of eight.
+  EXPECT_GT(expect_runs_equal_the_kernel(make_cubes(300, 7), 160, 120), 3000u);
+  // A level's textured surfaces, normals interpolated, some glowing.
+  const std::string maps = "/usr/share/games/openarena/baseoa/pak1-maps.pk3";
+  if (!std::filesystem::exists(maps))
+    GTEST_SKIP() << maps << " is missing: install openarena-081-maps (scripts/setup.sh)";
+  EXPECT_GT(expect_runs_equal_the_kernel(load_scene(maps + ":maps/oa_dm4.bsp"), 200, 112), 15000u);
 }
 
 TEST(PrimaryRaster, PaysOnlyWithEnoughPixelsPerTriangle) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 #include "bounce/core/parallel.h"
 #include "bounce/render/gbuffer_kernel.h"
@@ -47,6 +48,7 @@ struct Candidate {
   uint32_t index = PrimaryRaster::kNone;  // in the raster's triangles()
   uint32_t mesh = 0, triangle = 0, id = 0;
   bool cutouts = false;
+  SurfaceForm form;  // the triangle's, for the spans' loops (span_of_form)
   // (Value-initialised: GCC cannot see that load() fills them before the first use.)
   SurfaceTriangle surface{};
   TriangleFromOrigin test{};  // for rays from the camera
@@ -59,6 +61,7 @@ struct Candidate {
     id = scene.triangle_id(r.mesh, r.triangle);
     surface = surface_triangle(scene, r.mesh, r.triangle);
     cutouts = surface.material->has_cutouts();
+    form = SurfaceForm::of(surface);
     test = TriangleFromOrigin::make(surface.p0, surface.p1, surface.p2, eye);
   }
 };
@@ -91,6 +94,87 @@ bool pixel_from_raster(const SceneView& scene, const TraceView& trace, const Pri
   return true;
 }
 
+// Pixel x0 + k of row y (G-buffer index i0 + k) from the raster's candidate `c` as
+// pixel_from_raster writes it where the camera ray meets `c`; whether it misses, in which case
+// what it wrote must be written again (the ray traced). No branch: lanes of a loop.
+template <SurfaceForm kForm>
+BOUNCE_LANE_INLINE bool candidate_pixel(const SceneView& scene, const CameraRays& camera,
+                                        vec2 subpixel, int x0, int y, size_t k, size_t i0,
+                                        const Candidate& c, const GBufferView& g) {
+  Ray ray;
+  ray.origin = camera.origin;
+  ray.direction = camera.direction(float(x0 + int(k)) + subpixel.x, float(y) + subpixel.y);
+  ray.tmin = 0.0f;
+  Hit hit;
+  hit.mesh = c.mesh;
+  hit.triangle = c.triangle;
+  const bool meets = c.test.meets(ray.direction, ray.tmin, ray.tmax, hit.t, hit.barycentric);
+  gbuffer_triangle_pixel<kForm>(scene, camera.forward, ray, hit, c.surface, c.id, i0 + k, g);
+  return !meets;
+}
+
+constexpr size_t kSpanLanes = 8;
+
+// Pixels [k0, k1) of a run of n pixels, whose rays all have `candidate` (no cut-outs) in a scene
+// without sphere lights, kForm being the candidate's form: written by candidate_pixel in a loop
+// GCC vectorises eight lanes wide (the triangle's data, its material and kForm the same in every
+// lane; `missed` of 32 bits, as wide as a float, for eight lanes a vector), `missed` marking the
+// rays to trace. The loop runs over whole blocks of eight (over the span itself it ran scalar
+// below 32 pixels, and most spans are shorter): a block that reaches past k1 writes pixels of
+// the run's later spans too, which those then overwrite; the run's last pixels go one by one.
+// Out of line, so that the loop is compiled on its own.
+template <SurfaceForm kForm>
+[[gnu::noinline]] void span_from_raster(const SceneView& scene, const CameraRays& camera,
+                                        vec2 subpixel, int x0, int y, size_t k0, size_t k1,
+                                        size_t n, size_t i0, const Candidate& candidate,
+                                        const GBufferView& g, uint32_t* missed) {
+  const SceneView sv = scene;  // copies: the loop's stores cannot change them
+  const CameraRays cam = camera;
+  Candidate c = candidate;
+  const MaterialRecord material = *c.surface.material;  // (the loop then loads none of it)
+  c.surface.material = &material;
+  const GBufferView gv = g;
+  // Whole blocks of eight from k0 up to k1, within the run.
+  const size_t blocks = std::min(k1 - k0 + kSpanLanes - 1, n - k0) / kSpanLanes;
+  const size_t count = blocks * kSpanLanes;
+  if (count % kSpanLanes != 0) __builtin_unreachable();  // (GCC: then no scalar epilogue)
+  BOUNCE_IVDEP
+  for (size_t j = 0; j < count; ++j)
+    missed[k0 + j] = uint32_t(candidate_pixel<kForm>(sv, cam, subpixel, x0, y, k0 + j, i0, c, gv));
+  for (size_t k = k0 + count; k < k1; ++k)
+    missed[k] = uint32_t(candidate_pixel<kForm>(sv, cam, subpixel, x0, y, k, i0, c, gv));
+}
+
+// The forms (SurfaceForm) whose spans have a loop of their own, without a branch: a Quake level's
+// surfaces (normals, texture coordinates and an albedo texture, some glowing through an emission
+// texture), an OBJ's with or without normals, texture coordinates and textures, and glTF's
+// metallic ones without a normal map. Any other form takes the loop that reads the triangle's.
+constexpr SurfaceForm kSpanForms[] = {
+    {true, true, true, false, {true, true, false, false, false}},
+    {true, true, true, false, {true, true, false, false, true}},
+    {true, true, true, false, {true, false, false, false, false}},
+    {true, true, false, false, {true, false, false, false, false}},
+    {true, false, false, false, {true, false, false, false, false}},
+    {true, true, true, false, {true, true, true, true, false}},
+    {true, true, true, false, {true, false, true, false, false}},
+};
+
+// span_from_raster with the candidate's form, from kSpanForms[I] on.
+template <size_t I = 0>
+void span_of_form(SurfaceForm form, const SceneView& scene, const CameraRays& camera, vec2 subpixel,
+                  int x0, int y, size_t k0, size_t k1, size_t n, size_t i0,
+                  const Candidate& candidate, const GBufferView& g, uint32_t* missed) {
+  if constexpr (I == std::size(kSpanForms)) {
+    span_from_raster<SurfaceForm{}>(scene, camera, subpixel, x0, y, k0, k1, n, i0, candidate, g,
+                                    missed);
+  } else if (form == kSpanForms[I]) {
+    span_from_raster<kSpanForms[I]>(scene, camera, subpixel, x0, y, k0, k1, n, i0, candidate, g,
+                                    missed);
+  } else {
+    span_of_form<I + 1>(form, scene, camera, subpixel, x0, y, k0, k1, n, i0, candidate, g, missed);
+  }
+}
+
 }  // namespace
 
 void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const CameraRays& camera,
@@ -99,6 +183,7 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
   std::array<Ray, kGBufferRun> rays, traced;
   std::array<Hit, kGBufferRun> hits, traced_hits;
   std::array<uint32_t, kGBufferRun> traced_index;
+  std::array<uint32_t, kGBufferRun> missed;
   Candidate candidate;
   const TraceView trace = raster ? tracer.view() : TraceView{};
   for (int y = y0; y < y1; ++y)
@@ -122,12 +207,33 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
       // The pixels the raster stands for written at once, the rays it cannot stand for traced
       // together.
       size_t m = 0;
-      for (size_t k = 0; k < n; ++k)
-        if (!pixel_from_raster(scene, trace, *raster, camera.forward, g.index(run + int(k), y),
-                               rays[k], candidate, g)) {
-          traced[m] = rays[k];
-          traced_index[m++] = uint32_t(k);
+      const size_t i0 = g.index(run, y);
+      const uint32_t* candidates = raster->candidates() + i0;
+      for (size_t k = 0; k < n;) {
+        // The pixels from k on that share its candidate.
+        size_t end = k + 1;
+        while (end < n && candidates[end] == candidates[k]) ++end;
+        const uint32_t c = candidates[k];
+        if (c != PrimaryRaster::kNone && trace.sphere_count == 0) {
+          if (c != candidate.index) candidate.load(scene, *raster, c, camera.origin);
+          if (!candidate.cutouts) {
+            span_of_form(candidate.form, scene, camera, subpixel, run, y, k, end, n, i0, candidate,
+                         g, missed.data());
+            for (; k < end; ++k)
+              if (missed[k]) {
+                traced[m] = rays[k];
+                traced_index[m++] = uint32_t(k);
+              }
+            continue;
+          }
         }
+        for (; k < end; ++k)
+          if (!pixel_from_raster(scene, trace, *raster, camera.forward, i0 + k, rays[k], candidate,
+                                 g)) {
+            traced[m] = rays[k];
+            traced_index[m++] = uint32_t(k);
+          }
+      }
       if (m == 0) continue;
       tracer.intersect(std::span<const Ray>(traced.data(), m),
                        std::span<Hit>(traced_hits.data(), m), true);
