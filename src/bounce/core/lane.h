@@ -38,6 +38,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE vec4 pick(bool c, vec4 a, vec4 b) {
 BOUNCE_HD BOUNCE_LANE_INLINE vec3 load3(const vec3* a, size_t i) {
   return {a[i].x, a[i].y, a[i].z};
 }
+// A vec3 field, read component by component.
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 load3(const vec3& v) {
+  return {v.x, v.y, v.z};
+}
 BOUNCE_HD BOUNCE_LANE_INLINE void store3(vec3* a, size_t i, vec3 v) {
   a[i].x = v.x;
   a[i].y = v.y;

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/surface_hit.h"
 
@@ -59,12 +60,13 @@ struct GBufferViewT {
   }
   // Writes a surface record's fields at pixel i (the ids, depth and motion are set apart).
   BOUNCE_HD void store(size_t i, const SurfaceHit& s) const {
-    position[i] = s.position;
-    normal[i] = s.normal;
-    geometric_normal[i] = s.geometric_normal;
-    albedo[i] = s.albedo;
-    f0[i] = s.f0;
-    emission[i] = s.emission;
+    // (store3: the G-buffer's runs of pixels write eight lanes at a time.)
+    store3(position, i, s.position);
+    store3(normal, i, s.normal);
+    store3(geometric_normal, i, s.geometric_normal);
+    store3(albedo, i, s.albedo);
+    store3(f0, i, s.f0);
+    store3(emission, i, s.emission);
     roughness[i] = s.roughness;
   }
 };

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/surface_hit.h"
 #include "bounce/render/tangent_frame.h"
@@ -96,7 +97,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
 
   SurfaceHit s;
   s.position = b0 * t.p0 + b1 * t.p1 + b2 * t.p2;
-  const vec3 face = t.face;
+  const vec3 face = load3(t.face);
   const bool front = glm::dot(face, direction) < 0.0f;
   s.geometric_normal = front ? face : -face;
   // The shading normal as the file has it (interpolated, else the face's), turned to the
@@ -105,10 +106,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
   if (kForm.has_normals(t)) {
     const vec3 n = b0 * t.n0 + b1 * t.n1 + b2 * t.n2;
     // One division, not glm's three (vec3 / float): they were a tenth of the G-buffer kernel.
-    // Made either way and then chosen: no branch, so a loop over a triangle's pixels vectorises.
+    // Made either way and then picked: no branch, so a loop over a triangle's pixels vectorises
+    // (load3 and pick likewise: lane.h).
     const float len = glm::length(n);
-    const vec3 unit = n * (1.0f / len);
-    normal = len > 0.0f ? unit : face;
+    normal = pick(len > 0.0f, n * (1.0f / len), face);
   }
   vec2 uv(0.0f);
   if (kForm.has_uvs(t)) {
@@ -124,10 +125,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
   // Interpolated normals live on the same side as the face normal we shade from.
   s.normal = glm::dot(normal, s.geometric_normal) < 0.0f ? -normal : normal;
   const MaterialPoint m = material_at<kMeanTextures, kForm.material>(material, textures, uv);
-  s.albedo = m.albedo;
-  s.f0 = m.f0;
+  s.albedo = load3(m.albedo);
+  s.f0 = load3(m.f0);
   s.roughness = m.roughness;
-  s.emission = m.emission * (front ? 1.0f : 0.0f);
+  s.emission = pick(front, m.emission, vec3(0.0f));
   return s;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "bounce/core/device.h"
+#include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/scene/material.h"
 
@@ -95,9 +96,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
     p.f0 = glm::mix(m.dielectric_f0, base, metallic);
   } else {
     p.albedo = m.albedo * tint;
-    p.f0 = m.f0;
+    p.f0 = load3(m.f0);  // (load3: lane.h)
   }
-  p.emission = m.emission;
+  p.emission = load3(m.emission);
   if (kForm.has_emission_texture(m))
     p.emission *=
         texture_or_mean<kMeanTextures>(textures, m.emission_texture, m.emission_transform, uv);
