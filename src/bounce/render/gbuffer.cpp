@@ -145,18 +145,28 @@ template <SurfaceForm kForm>
     missed[k] = uint32_t(candidate_pixel<kForm>(sv, cam, subpixel, x0, y, k, i0, c, gv));
 }
 
-// The forms (SurfaceForm) whose spans have a loop of their own, without a branch: a Quake level's
-// surfaces (normals, texture coordinates and an albedo texture, some glowing through an emission
-// texture), an OBJ's with or without normals, texture coordinates and textures, and glTF's
-// metallic ones without a normal map. Any other form takes the loop that reads the triangle's.
+// The forms (SurfaceForm) whose spans have a loop of their own, without a branch. Any other form
+// takes the loop that reads the triangle's.
+constexpr MaterialForm kUntextured{.known = true};
+constexpr MaterialForm kAlbedoTexture{.known = true, .albedo_texture = true};
 constexpr SurfaceForm kSpanForms[] = {
-    {true, true, true, false, {true, true, false, false, false}},
-    {true, true, true, false, {true, true, false, false, true}},
-    {true, true, true, false, {true, false, false, false, false}},
-    {true, true, false, false, {true, false, false, false, false}},
-    {true, false, false, false, {true, false, false, false, false}},
-    {true, true, true, false, {true, true, true, true, false}},
-    {true, true, true, false, {true, false, true, false, false}},
+    // A Quake level's surfaces, some glowing through an emission texture.
+    {.known = true, .normals = true, .uvs = true, .material = kAlbedoTexture},
+    {.known = true,
+     .normals = true,
+     .uvs = true,
+     .material = {.known = true, .albedo_texture = true, .emission_texture = true}},
+    // OBJ's, untextured: with or without texture coordinates and normals (the Cornell box).
+    {.known = true, .normals = true, .uvs = true, .material = kUntextured},
+    {.known = true, .normals = true, .material = kUntextured},
+    {.known = true, .material = kUntextured},
+    // glTF's metallic ones without a normal map.
+    {.known = true,
+     .normals = true,
+     .uvs = true,
+     .material =
+         {.known = true, .albedo_texture = true, .metallic = true, .metal_rough_texture = true}},
+    {.known = true, .normals = true, .uvs = true, .material = {.known = true, .metallic = true}},
 };
 
 // span_from_raster with the candidate's form, from kSpanForms[I] on.
