@@ -30,11 +30,11 @@ struct TextureTransform {
   }
 };
 
-// The texels and the lookup, as plain data for kernels; Texture samples through it too.
 // The most texels a texture may have (2^28, what image loading accepts): TextureView::sample
 // indexes its floats with an int, which a loop over pixels then gathers with.
 inline constexpr int64_t kMaxTexels = int64_t(1) << 28;
 
+// The texels and the lookup, as plain data for kernels; Texture samples through it too.
 struct TextureView {
   const vec3* texels = nullptr;  // row-major from the top row, linear RGB
   int width = 0;
