@@ -217,5 +217,68 @@ TEST(ShadowSelection, ConvergesToARayPerSample) {
   EXPECT_GT(rms_error(frame, exact), 0.0);
 }
 
+// How much a pixel's noise cancels within blocks of `block` x `block` pixels over `frames`
+// frames of `direct(frame)`: the variance of the blocks' mean over frames, against what
+// independent pixels with the same per-pixel variances would give (about 1 for independent
+// samples, less where neighbouring pixels' samples are stratified). Variances are summed over
+// the three channels.
+template <typename Direct>
+double block_variance_ratio(const Direct& direct, int frames, int block) {
+  const size_t n = size_t(kSize) * kSize * 3;
+  const int per_row = kSize / block;
+  const size_t blocks = size_t(per_row * per_row) * 3;
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0), block_sum(blocks, 0.0), block_sum2(blocks, 0.0);
+  for (int f = 0; f < frames; ++f) {
+    const Image image = direct(uint32_t(f));
+    std::vector<double> means(blocks, 0.0);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double v = image.at(x, y)[c];
+          const size_t i = (size_t(y) * kSize + size_t(x)) * 3 + size_t(c);
+          sum[i] += v;
+          sum2[i] += v * v;
+          means[size_t((y / block) * per_row + x / block) * 3 + size_t(c)] +=
+              v / double(block * block);
+        }
+    for (size_t b = 0; b < blocks; ++b) {
+      block_sum[b] += means[b];
+      block_sum2[b] += means[b] * means[b];
+    }
+  }
+  const auto variance = [&](double s, double s2) {
+    return std::max(0.0, s2 / frames - (s / frames) * (s / frames));
+  };
+  double pixels = 0.0, blocks_variance = 0.0;
+  for (size_t i = 0; i < n; ++i) pixels += variance(sum[i], sum2[i]);
+  for (size_t b = 0; b < blocks; ++b) blocks_variance += variance(block_sum[b], block_sum2[b]);
+  // Independent pixels: a block mean's variance is its pixels' summed over block^4.
+  return blocks_variance / (pixels / std::pow(double(block), 4.0));
+}
+
+// The floor under a 1 x 1 m light 1.5 m above it, facing down.
+Scene floor_under_an_area_light() {
+  Scene s = many_lights();
+  s.lights.clear();
+  Material lamp;
+  lamp.albedo = vec3(0.0f);
+  lamp.emission = vec3(10.0f);
+  s.materials.push_back(lamp);
+  s.meshes.push_back(scene_test::quad_mesh("lamp", vec3(-0.5f, 1.5f, -0.5f), vec3(1, 0, 0),
+                                           vec3(0, 0, 1), uint32_t(s.materials.size() - 1)));
+  s.finalize();
+  return s;
+}
+
+// Neighbouring pixels' points on an area light spread over it (pattern_offset's screen
+// lattice): their noise largely cancels within 4x4 blocks.
+TEST(AreaLightSamples, NeighbouringPixelsSpreadOverTheLight) {
+  const LitFloor floor_(floor_under_an_area_light());
+  EXPECT_EQ(floor_.scene.area_lights.size(), 1u);
+  const double ratio =
+      block_variance_ratio([&](uint32_t f) { return floor_.direct(looped(f)); }, 64, 4);
+  EXPECT_LT(ratio, 0.5);
+}
+
 }  // namespace
 }  // namespace bounce

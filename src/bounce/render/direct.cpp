@@ -376,7 +376,7 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
     for (uint32_t a = 0; a < scene.area_light_count; ++a) {
       const AreaLightView& light = scene.area_lights[a];
       for (int j = 0; j < width; ++j)
-        row.offset[j] = pattern_offset(uint32_t(i0) + uint32_t(j), area_light_id(scene, a),
+        row.offset[j] = pattern_offset({uint32_t(x0 + j), uint32_t(y)}, area_light_id(scene, a),
                                        settings_.frame, settings_.seed);
       for (int k = 0; k < n; ++k) {
         pick_area_light_row(light, corners_[a].data(), k, n, width, row);

@@ -44,12 +44,23 @@ BOUNCE_HD inline bool resamples_lights(const LightPickerView& lights,
   return lights.count > settings.max_looped_lights;
 }
 
-// A per-pixel, per-light rotation of the sample pattern (Cranley-Patterson), as two floats.
-BOUNCE_HD inline vec2 pattern_offset(uint32_t pixel, uint32_t light, uint32_t frame,
-                                     uint32_t seed) {
-  const uint32_t h =
-      hash_u32(pixel ^ hash_u32(light * 0x9E3779B9u ^ hash_u32(frame + seed * 0x85EBCA6Bu)));
-  return {bits_to_unit_float(h), bits_to_unit_float(hash_u32(h ^ 0x68E31DA4u))};
+// A pixel's coordinates on the screen (the G-buffer's), for the screen lattice (qmc.h).
+struct PixelXY {
+  uint32_t x, y;
+};
+BOUNCE_HD inline PixelXY pixel_xy(const ConstGBufferView& g, uint32_t i) {
+  return {i % uint32_t(g.width), i / uint32_t(g.width)};
+}
+
+// A per-pixel, per-light rotation of the sample pattern (Cranley-Patterson), as two floats: the
+// pixel's point of the screen lattice, rotated by one random offset per light and frame. Each
+// pixel's offset is uniform over frames (so its estimate is unbiased), and neighbouring pixels'
+// offsets spread evenly over the square, so the denoiser's spatial filter averages stratified
+// samples (Georgiev and Fajardo 2016, blue-noise dithered sampling, the same idea).
+BOUNCE_HD inline vec2 pattern_offset(PixelXY pixel, uint32_t light, uint32_t frame, uint32_t seed) {
+  const uint32_t h = hash_u32(light * 0x9E3779B9u ^ hash_u32(frame + seed * 0x85EBCA6Bu));
+  return {bits_to_unit_float(screen_lattice_x(pixel.x, pixel.y) + h),
+          bits_to_unit_float(screen_lattice_y(pixel.x, pixel.y) + hash_u32(h ^ 0x68E31DA4u))};
 }
 
 // Sample k of a light's n, its pattern rotated by `offset` (pattern_offset).
@@ -77,11 +88,13 @@ BOUNCE_HD void shade_light_sample(const SurfaceHit& s, vec3 wo, vec3 p, const Li
 template <typename Shadow>
 BOUNCE_HD void direct_environment(const SceneView& scene, const LightRecord& light,
                                   uint32_t light_id, const SurfaceHit& s, vec3 wo, vec3 p,
-                                  uint32_t i, const DirectSettings& settings, Shadow& shadow) {
+                                  uint32_t i, PixelXY xy, const DirectSettings& settings,
+                                  Shadow& shadow) {
   const int n = settings.light_samples;
   const float inv_n = 1.0f / float(n);
-  const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
-  const vec2 offset_bsdf = pattern_offset(i, light_id ^ 0x5BD1E995u, settings.frame, settings.seed);
+  const vec2 offset = pattern_offset(xy, light_id, settings.frame, settings.seed);
+  const vec2 offset_bsdf =
+      pattern_offset(xy, light_id ^ 0x5BD1E995u, settings.frame, settings.seed);
   for (int k = 0; k < n; ++k) {
     const LightSample ls = sample_environment_light(scene, light, pattern_sample(k, n, offset));
     if (ls.valid())
@@ -139,13 +152,14 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
   const int n = settings.light_samples;
   const float inv_n = 1.0f / float(n);
   const LaneSurface lane = lane_surface(s, eye);
+  const PixelXY xy = pixel_xy(g, i);
 
   uint32_t light_id = 0;
   for (uint32_t l = 0; l < scene.light_count; ++l) {
     const LightRecord& light = scene.lights[l];
     ++light_id;
     if (light.type == LightType::kEnvironment) {
-      direct_environment(scene, light, light_id, s, wo, p, i, settings, shadow);
+      direct_environment(scene, light, light_id, s, wo, p, i, xy, settings, shadow);
       continue;
     }
     if (is_punctual(light.type)) {
@@ -157,7 +171,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
     SurfaceHit diffuse_only = s;
     diffuse_only.f0 = vec3(0.0f);
     const vec3 specular = sphere_light_specular(light, s, p, wo) * inv_n;
-    const vec2 offset = pattern_offset(i, light_id, settings.frame, settings.seed);
+    const vec2 offset = pattern_offset(xy, light_id, settings.frame, settings.seed);
     for (int k = 0; k < n; ++k) {
       const LightSample ls = sample_sphere_light(light, p, pattern_sample(k, n, offset));
       if (!ls.valid() || glm::dot(s.geometric_normal, ls.wi) <= 0.0f) continue;
@@ -168,7 +182,7 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
     }
   }
   for (uint32_t a = 0; a < scene.area_light_count; ++a) {
-    const vec2 offset = pattern_offset(i, area_light_id(scene, a), settings.frame, settings.seed);
+    const vec2 offset = pattern_offset(xy, area_light_id(scene, a), settings.frame, settings.seed);
     for (int k = 0; k < n; ++k)
       area_light_offer(scene, scene.area_lights[a], lane, pattern_sample(k, n, offset), inv_n,
                        shadow);
@@ -226,7 +240,7 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
   }
   if (scene.environment >= 0)
     direct_environment(scene, scene.lights[scene.environment], uint32_t(scene.environment) + 1, s,
-                       wo, p, i, settings, shadow);
+                       wo, p, i, pixel_xy(g, i), settings, shadow);
 }
 
 // One shadow ray for all of a pixel's light samples, by resampling over the samples themselves
