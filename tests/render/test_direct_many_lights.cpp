@@ -256,6 +256,17 @@ double block_variance_ratio(const Direct& direct, int frames, int block) {
   return blocks_variance / (pixels / std::pow(double(block), 4.0));
 }
 
+// Neighbouring pixels draw their resampling candidates from the screen lattice, spread over the
+// lights' power and over each light: part of the noise cancels within 4x4 blocks (0.79 of
+// independent pixels' variance; the choice among the candidates stays independent). The ratio
+// over 192 blocks and channels errs by a few percent, so independent candidates fail the bound.
+TEST(ManyLights, NeighbouringPixelsDrawCandidatesSpreadOverTheLights) {
+  const LitFloor floor_;
+  const double ratio =
+      block_variance_ratio([&](uint32_t f) { return floor_.direct(resampled(8, f)); }, 64, 4);
+  EXPECT_LT(ratio, 0.9);
+}
+
 // The floor under a 1 x 1 m light 1.5 m above it, facing down.
 Scene floor_under_an_area_light() {
   Scene s = many_lights();

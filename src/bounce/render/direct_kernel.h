@@ -205,14 +205,22 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
   const vec3 wo = glm::normalize(eye - s.position);
   const vec3 p = offset_origin(s.position, s.geometric_normal);
   const int n = settings.light_samples, m = settings.candidates > 0 ? settings.candidates : 1;
-  Pcg32 rng(hash_u32(i ^ hash_u32(settings.frame + settings.seed * 0x85EBCA6Bu)), 0x5bd1e995u);
+  // Each candidate's light and point from the screen lattice, rotated per candidate and frame
+  // (as pattern_offset): neighbouring pixels draw candidates spread over the lights' power and
+  // over each light, as from a stratified set.
+  const PixelXY xy = pixel_xy(g, i);
+  const uint32_t lattice_x = screen_lattice_x(xy.x, xy.y), lattice_y = screen_lattice_y(xy.x, xy.y);
+  const uint32_t frame_hash = hash_u32(settings.frame + settings.seed * 0x85EBCA6Bu);
+  Pcg32 rng(hash_u32(i ^ frame_hash), 0x5bd1e995u);  // which candidate each keeps
   for (int k = 0; k < n; ++k) {
     float weight_sum = 0.0f, kept_weight = 0.0f;
     vec3 kept_radiance(0.0f);
     LightSample kept;
     for (int j = 0; j < m; ++j) {
-      const float u_pick = rng.next_float();
-      const vec2 u = rng.next2();
+      const uint32_t rotation = hash_u32(frame_hash ^ hash_u32(uint32_t(k * m + j) + 0x7F4A7C15u));
+      const float u_pick = bits_to_unit_float(lattice_x + rotation);
+      const vec2 u(bits_to_unit_float(lattice_y + hash_u32(rotation ^ 0x68E31DA4u)),
+                   bits_to_unit_float(lattice_x + hash_u32(rotation ^ 0x1B873593u)));
       const float u_keep = rng.next_float();
       const uint32_t entry = picker.pick(u_pick);
       const float pmf = picker.pmf[entry];
