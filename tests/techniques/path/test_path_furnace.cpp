@@ -59,7 +59,7 @@ TEST(PathFurnace, MaxBouncesTruncatesTheSeriesWithAndWithoutRoulette) {
 TEST(PathFurnace, PipelineDirectPlusPathIndirectIsTheFullAnswer) {
   const Scene s = furnace(kAlbedo, kRadiance);
   for (int bounces : {-1, 1}) {
-    // 32x32 pixels and 64 frames: an eighth of the samples of 16x16 and 32, so a seed rarely
+    // 32x32 pixels and 64 frames: eight times the samples of 16x16 and 32, so a seed rarely
     // lands the direct mean outside 1%.
     render_test::Job job("path", 32, 32);
     job.params = {{"max_bounces", std::to_string(bounces)}, {"samples", "4"}};
