@@ -119,6 +119,45 @@ TEST(PunctualLightLane, EqualsTheLightSampleAndItsShading) {
   EXPECT_GT(penumbra, 100) << "spots' smoothstep band";
 }
 
+// sphere_outside_spot, by brute force: no point of a sphere it rules out is lit (spot_falloff_lane
+// is 0 at points on its boundary and within), and it rules out most of the spheres whose points
+// all lie outside the cone (a test that always said no would fail), for narrow and wide cones.
+TEST(SpotCone, SpheresRuledOutAreUnlitAndMostUnlitSpheresAreRuledOut) {
+  Pcg32 rng(23);
+  int ruled_out = 0, unlit = 0, unlit_ruled_out = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const float outer = 5.0f + 80.0f * rng.next_float();
+    const Light light = Light::spot(2.0f * unit(rng), unit(rng), vec3(1.0f), 0.5f * outer, outer);
+    const PunctualLane l = punctual_lane(light);
+    const vec3 centre = l.position + (0.2f + 4.0f * rng.next_float()) * unit(rng);
+    const float radius = 0.5f * rng.next_float() * rng.next_float();
+    const bool out = sphere_outside_spot(l, centre, radius);
+    bool any_lit = false;
+    for (int k = 0; k < 200; ++k) {
+      // Points on the boundary (the nearest to the cone are there) and within.
+      const vec3 q = centre + (k % 2 ? radius : radius * rng.next_float()) * unit(rng);
+      any_lit |= spot_falloff_lane(l, glm::normalize(q - l.position)) > 0.0f;
+    }
+    if (out) {
+      ++ruled_out;
+      EXPECT_FALSE(any_lit) << "trial " << t;
+    }
+    if (!any_lit) {
+      ++unlit;
+      unlit_ruled_out += out;
+    }
+  }
+  EXPECT_GT(ruled_out, 1000);
+  EXPECT_GT(unlit_ruled_out, unlit * 9 / 10);
+  // Not a spot, or a cone wider than a hemisphere: never ruled out.
+  const vec3 far(100.0f, 0.0f, 0.0f);
+  EXPECT_FALSE(sphere_outside_spot(punctual_lane(Light::point(vec3(0.0f), vec3(1.0f))), far, 1.0f));
+  EXPECT_FALSE(sphere_outside_spot(
+      punctual_lane(Light::spot(vec3(0.0f), vec3(0, 0, 1), vec3(1.0f), 60.0f, 100.0f)), far, 1.0f));
+  EXPECT_TRUE(sphere_outside_spot(
+      punctual_lane(Light::spot(vec3(0.0f), vec3(0, 0, 1), vec3(1.0f), 20.0f, 30.0f)), far, 1.0f));
+}
+
 // The Cornell box, its tall box glossy so the GGX lobe is in the rows too; with `punctual`, also
 // lit by a point light, a spot from the camera whose cone edge crosses the back wall, the sun
 // through the open front, and glowing strips of 13 and 21 triangles of unequal areas on the left

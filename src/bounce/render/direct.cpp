@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -64,10 +65,15 @@ struct RowSurfaces {
   Row3 origin, normal, geometric_normal, albedo, f0, wo;
   float roughness[kRowWidth];
   uint32_t hit[kRowWidth];  // whether the G-buffer has a surface there
+  // A sphere around the origins of the pixels that have a surface (radius < 0: none has).
+  vec3 centre;
+  float radius;
 
   // Returns whether any of them reflects specularly (f0 > 0: lane_shade's kGlossy).
   bool load(const ConstGBufferView& g, size_t i0, int n, vec3 eye) {
     uint32_t glossy = 0;
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
     BOUNCE_IVDEP
     for (int j = 0; j < n; ++j) {
       const size_t i = i0 + size_t(j);
@@ -82,7 +88,22 @@ struct RowSurfaces {
       hit[j] = uint32_t(g.primitive[i] != kNoPrimitive);
       glossy |= uint32_t(max_component(s.f0) > 0.0f);
     }
+    for (int j = 0; j < n; ++j)
+      if (hit[j])
+        for (int c = 0; c < 3; ++c) {
+          lo[c] = std::min(lo[c], origin[j][c]);
+          hi[c] = std::max(hi[c], origin[j][c]);
+        }
+    const vec3 low(lo[0], lo[1], lo[2]), high(hi[0], hi[1], hi[2]);
+    centre = 0.5f * (low + high);
+    radius = lo[0] <= hi[0] ? 0.5f * glm::length(high - low) : -1.0f;
     return glossy != 0;
+  }
+
+  // Whether spot light l sends none of these pixels light (sphere_outside_spot): then its
+  // samples carry nothing, and skipping them leaves every selection and batch as it was.
+  bool outside(const PunctualLane& l) const {
+    return radius < 0.0f || sphere_outside_spot(l, centre, radius);
   }
 
   BOUNCE_LANE_INLINE LaneSurface operator[](int j) const {
@@ -367,6 +388,7 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
     if (select) selection.start(uint32_t(i0), width, settings_);
     const bool glossy = surfaces.load(view, i0, width, eye_);
     for (const PunctualLane& light : punctual_) {
+      if (surfaces.outside(light)) continue;
       if (glossy)
         shade_punctual_row<true>(surfaces, width, light, row);
       else

@@ -140,6 +140,22 @@ BOUNCE_HD BOUNCE_LANE_INLINE float spot_falloff_lane(const PunctualLane& l, vec3
   return pick(c >= l.cos_inner, 1.0f, pick(c <= l.cos_outer, 0.0f, t * t * (3.0f - 2.0f * t)));
 }
 
+// Whether no point within `radius` of `centre` lies inside spot light l's outer cone, so none
+// receives its light (spot_falloff_lane is 0 there): the row loop skips the spot for such rows.
+// The sphere's distance from the cone's tangent plane along the generator nearest the centre
+// bounds its distance from the cone (a convex cone lies behind each tangent plane), so this
+// never skips a lit point; a margin of a thousandth of the distances covers rounding. False for
+// other lights and for cones wider than a hemisphere (not convex).
+BOUNCE_HD inline bool sphere_outside_spot(const PunctualLane& l, vec3 centre, float radius) {
+  if (!l.spot || !(l.cos_outer > 0.0f)) return false;
+  const vec3 v = centre - l.position;
+  const float along = glm::dot(v, l.direction);
+  const float across = glm::length(v - along * l.direction);
+  const float sin_outer = std::sqrt(glm::max(1.0f - l.cos_outer * l.cos_outer, 0.0f));
+  const float beyond = across * l.cos_outer - along * sin_outer;
+  return beyond > radius + 1e-3f * (glm::length(v) + radius);
+}
+
 // The one sample of punctual light l (sample_punctual_light), with the BRDF, the cosine and
 // `scale` applied.
 template <bool kGlossy = true>
