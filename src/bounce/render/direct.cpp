@@ -3,12 +3,12 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "bounce/core/parallel.h"
+#include "bounce/scene/bounds.h"
 
 namespace bounce {
 
@@ -72,8 +72,6 @@ struct RowSurfaces {
   // Returns whether any of them reflects specularly (f0 > 0: lane_shade's kGlossy).
   bool load(const ConstGBufferView& g, size_t i0, int n, vec3 eye) {
     uint32_t glossy = 0;
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
     BOUNCE_IVDEP
     for (int j = 0; j < n; ++j) {
       const size_t i = i0 + size_t(j);
@@ -88,15 +86,11 @@ struct RowSurfaces {
       hit[j] = uint32_t(g.primitive[i] != kNoPrimitive);
       glossy |= uint32_t(max_component(s.f0) > 0.0f);
     }
+    Bounds bounds;
     for (int j = 0; j < n; ++j)
-      if (hit[j])
-        for (int c = 0; c < 3; ++c) {
-          lo[c] = std::min(lo[c], origin[j][c]);
-          hi[c] = std::max(hi[c], origin[j][c]);
-        }
-    const vec3 low(lo[0], lo[1], lo[2]), high(hi[0], hi[1], hi[2]);
-    centre = 0.5f * (low + high);
-    radius = lo[0] <= hi[0] ? 0.5f * glm::length(high - low) : -1.0f;
+      if (hit[j]) bounds.extend(origin[j]);
+    centre = bounds.centre();
+    radius = bounds.empty() ? -1.0f : 0.5f * bounds.diagonal();
     return glossy != 0;
   }
 
