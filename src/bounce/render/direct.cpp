@@ -190,17 +190,27 @@ std::vector<float> area_light_corners(const SceneView& scene, const AreaLightVie
 // The searches of a light's cdf (count entries) for the row's u.x, into row.base (the entries)
 // and `stretched` (u.x stretched within them): in lockstep (sample_cdf's steps, one at a time for
 // every pixel: no branch to mispredict, and the pixels' loads overlap).
+// (Over int indices, which GCC can gather with: src/CMakeLists.txt.)
 void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
-  for (int j = 0; j < width; ++j) row.base[j] = 0;
+  int base[LightRow::kWidth];
+  float ux[LightRow::kWidth];
+  for (int j = 0; j < width; ++j) {
+    base[j] = 0;
+    ux[j] = row.u[j].x;
+  }
   for_cdf_halves(count, [&](uint32_t half) {
-    for (int j = 0; j < width; ++j) row.base[j] = cdf_halve(cdf, row.base[j], half, row.u[j].x);
+    const int h = int(half);
+    BOUNCE_IVDEP
+    for (int j = 0; j < width; ++j) base[j] = cdf[base[j] + h] <= ux[j] ? base[j] + h : base[j];
   });
+  const int last = int(count) - 1;
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
-    const float ux = row.u[j].x;
-    const uint32_t entry = cdf_entry(cdf, row.base[j], count, ux);
-    row.base[j] = entry;
-    stretched[j] = cdf_stretch(cdf, entry, ux);
+    // cdf_entry, then cdf_stretch.
+    const int e = glm::min(base[j] + int(cdf[base[j]] <= ux[j]), last);
+    const float before = cdf[e - int(e != 0)];
+    row.base[j] = uint32_t(e);
+    stretched[j] = cdf_stretch_within(pick(e == 0, 0.0f, before), cdf[e], ux[j]);
   }
 }
 
@@ -241,7 +251,9 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
                          LightRow& row) {
   const float* cdf = light.cdf;
   const uint32_t count = light.triangle_count;
-  for (int j = 0; j < width; ++j) row.u[j] = pattern_sample(k, n, row.offset[j]);
+  const vec2 h = hammersley(uint32_t(k), uint32_t(n));
+  BOUNCE_IVDEP
+  for (int j = 0; j < width; ++j) row.u[j] = rotate_unit(h, row.offset[j]);  // pattern_sample
   float stretched[LightRow::kWidth], uy[LightRow::kWidth];
   if (count <= kScannedCdf)
     scan_cdf_row(cdf, count, width, row, stretched);
@@ -250,8 +262,8 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
   for (int j = 0; j < width; ++j) uy[j] = row.u[j].y;
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
-    const uint32_t e = row.base[j];
-    const auto c = [&](uint32_t f) { return corners[f * count + e]; };
+    const int e = int(row.base[j]);
+    const auto c = [&](int f) { return corners[f * int(count) + e]; };
     const vec2 v(stretched[j], uy[j]);
     row.q.set(j, point_on_triangle(vec3(c(0), c(1), c(2)), vec3(c(3), c(4), c(5)),
                                    vec3(c(6), c(7), c(8)), v));
@@ -391,9 +403,11 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
     }
     for (uint32_t a = 0; a < scene.area_light_count; ++a) {
       const AreaLightView& light = scene.area_lights[a];
+      const PatternRotation rotation =
+          pattern_rotation(area_light_id(scene, a), settings_.frame, settings_.seed);
+      BOUNCE_IVDEP
       for (int j = 0; j < width; ++j)
-        row.offset[j] = pattern_offset({uint32_t(x0 + j), uint32_t(y)}, area_light_id(scene, a),
-                                       settings_.frame, settings_.seed);
+        row.offset[j] = pattern_offset_at({uint32_t(x0 + j), uint32_t(y)}, rotation);
       for (int k = 0; k < n; ++k) {
         pick_area_light_row(light, corners_[a].data(), k, n, width, row);
         if (glossy)

@@ -57,10 +57,21 @@ BOUNCE_HD inline PixelXY pixel_xy(const ConstGBufferView& g, uint32_t i) {
 // pixel's offset is uniform over frames (so its estimate is unbiased), and neighbouring pixels'
 // offsets spread evenly over the square, so the denoiser's spatial filter averages stratified
 // samples (Georgiev and Fajardo 2016, blue-noise dithered sampling, the same idea).
-BOUNCE_HD inline vec2 pattern_offset(PixelXY pixel, uint32_t light, uint32_t frame, uint32_t seed) {
+// The random part, one per light and frame, as 32-bit fixed point (pattern_rotation), and the
+// offset at a pixel from it (pattern_offset_at): a row loop makes the first once per light.
+struct PatternRotation {
+  uint32_t x, y;
+};
+BOUNCE_HD inline PatternRotation pattern_rotation(uint32_t light, uint32_t frame, uint32_t seed) {
   const uint32_t h = hash_u32(light * 0x9E3779B9u ^ hash_u32(frame + seed * 0x85EBCA6Bu));
-  return {bits_to_unit_float(screen_lattice_x(pixel.x, pixel.y) + h),
-          bits_to_unit_float(screen_lattice_y(pixel.x, pixel.y) + hash_u32(h ^ 0x68E31DA4u))};
+  return {h, hash_u32(h ^ 0x68E31DA4u)};
+}
+BOUNCE_HD inline vec2 pattern_offset_at(PixelXY pixel, PatternRotation r) {
+  return {bits_to_unit_float(screen_lattice_x(pixel.x, pixel.y) + r.x),
+          bits_to_unit_float(screen_lattice_y(pixel.x, pixel.y) + r.y)};
+}
+BOUNCE_HD inline vec2 pattern_offset(PixelXY pixel, uint32_t light, uint32_t frame, uint32_t seed) {
+  return pattern_offset_at(pixel, pattern_rotation(light, frame, seed));
 }
 
 // Sample k of a light's n, its pattern rotated by `offset` (pattern_offset).
