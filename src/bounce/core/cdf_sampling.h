@@ -28,8 +28,10 @@ BOUNCE_HD inline float cdf_stretch_within(float start, float end, float u) {
 // The same for `entry` of the table. Written as selects over loads that are always valid (entry 0
 // reads its own entry as the one before, then takes 0), so a row of pixels' stretches vectorise
 // (render/direct.cpp).
-BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
-  const float before = cdf[entry - uint32_t(entry != 0)];
+// (Index: uint32_t, or int where a CPU row loop gathers: src/CMakeLists.txt.)
+template <typename Index>
+BOUNCE_HD inline float cdf_stretch(const float* cdf, Index entry, float u) {
+  const float before = cdf[entry - Index(entry != 0)];
   const float start = entry == 0 ? 0.0f : before;
   return cdf_stretch_within(start, cdf[entry], u);
 }
@@ -44,11 +46,13 @@ BOUNCE_HD inline float cdf_stretch(const float* cdf, uint32_t entry, float u) {
 // One step over the `len` entries from `base` that may hold u's (half = len / 2, then len shrinks
 // by half): the first half are passed over if entry base + half ends at or below u. cdf_entry
 // finishes once len is 1.
-BOUNCE_HD inline uint32_t cdf_halve(const float* cdf, uint32_t base, uint32_t half, float u) {
+template <typename Index>
+BOUNCE_HD inline Index cdf_halve(const float* cdf, Index base, Index half, float u) {
   return cdf[base + half] <= u ? base + half : base;
 }
-BOUNCE_HD inline uint32_t cdf_entry(const float* cdf, uint32_t base, uint32_t count, float u) {
-  const uint32_t entry = base + (cdf[base] <= u ? 1u : 0u);
+template <typename Index>
+BOUNCE_HD inline Index cdf_entry(const float* cdf, Index base, Index count, float u) {
+  const Index entry = base + Index(cdf[base] <= u);
   return entry < count ? entry : count - 1;
 }
 // Calls step(half) for each of the search's steps over a table of `count` entries.

@@ -199,18 +199,14 @@ void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, 
     ux[j] = row.u[j].x;
   }
   for_cdf_halves(count, [&](uint32_t half) {
-    const int h = int(half);
     BOUNCE_IVDEP
-    for (int j = 0; j < width; ++j) base[j] = cdf[base[j] + h] <= ux[j] ? base[j] + h : base[j];
+    for (int j = 0; j < width; ++j) base[j] = cdf_halve(cdf, base[j], int(half), ux[j]);
   });
-  const int last = int(count) - 1;
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
-    // cdf_entry, then cdf_stretch.
-    const int e = glm::min(base[j] + int(cdf[base[j]] <= ux[j]), last);
-    const float before = cdf[e - int(e != 0)];
-    row.base[j] = uint32_t(e);
-    stretched[j] = cdf_stretch_within(pick(e == 0, 0.0f, before), cdf[e], ux[j]);
+    const int entry = cdf_entry(cdf, base[j], int(count), ux[j]);
+    row.base[j] = uint32_t(entry);
+    stretched[j] = cdf_stretch(cdf, entry, ux[j]);
   }
 }
 
