@@ -247,9 +247,7 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
                          LightRow& row) {
   const float* cdf = light.cdf;
   const uint32_t count = light.triangle_count;
-  const vec2 h = hammersley(uint32_t(k), uint32_t(n));
-  BOUNCE_IVDEP
-  for (int j = 0; j < width; ++j) row.u[j] = rotate_unit(h, row.offset[j]);  // pattern_sample
+  for (int j = 0; j < width; ++j) row.u[j] = pattern_sample(k, n, row.offset[j]);
   float stretched[LightRow::kWidth], uy[LightRow::kWidth];
   if (count <= kScannedCdf)
     scan_cdf_row(cdf, count, width, row, stretched);
