@@ -33,6 +33,7 @@ struct ReferenceOptions {
   double time_s = 0.0;
   int max_bounces = -1;
   int rr_start = 3;
+  int light_candidates = PathSettings().light_candidates;
   uint32_t seed = 0;
   int threads = 0;
   float exposure_ev = 0.0f;
@@ -69,6 +70,7 @@ void run_reference(const ReferenceOptions& o) {
   settings.seed = o.seed;
   settings.path.max_bounces = o.max_bounces;
   settings.path.rr_start = o.rr_start;
+  settings.path.light_candidates = o.light_candidates;
 
   check_memory(scene, o.width, o.height, kReferenceBytesPerPixel);
 
@@ -83,7 +85,8 @@ void run_reference(const ReferenceOptions& o) {
       o.seed,
       o.max_bounces,
       o.rr_start,
-      o.sample_offset};
+      o.sample_offset,
+      o.light_candidates};
   if (!o.checkpoint.empty() && std::filesystem::exists(o.checkpoint)) {
     state = load_reference_checkpoint(o.checkpoint, key);
     fmt::print("resuming {} from {} spp\n", o.checkpoint, state.spp);
@@ -181,6 +184,13 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--rr-start", o->rr_start,
                   "Path vertex from which Russian roulette may end paths")
       ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--light-candidates", o->light_candidates,
+                  fmt::format("Scenes with more than {} lights: light samples drawn by power per "
+                              "next-event estimate, one kept by its unshadowed contribution (1: "
+                              "the one drawn)",
+                              PathSettings().resample_above_lights))
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the paths' random numbers")->capture_default_str();
   cmd->add_option("-j,--threads", o->threads, "Worker threads (0: all cores)")

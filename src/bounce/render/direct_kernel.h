@@ -18,6 +18,7 @@
 #include "bounce/render/gbuffer_view.h"
 #include "bounce/render/light_lane.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/light_resampling.h"
 #include "bounce/render/light_sampling.h"
 #include "bounce/scene/environment.h"
 #include "bounce/scene/scene_view.h"
@@ -224,7 +225,7 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
   const uint32_t frame_hash = hash_u32(settings.frame + settings.seed * 0x85EBCA6Bu);
   Pcg32 rng(hash_u32(i ^ frame_hash), 0x5bd1e995u);  // which candidate each keeps
   for (int k = 0; k < n; ++k) {
-    float weight_sum = 0.0f, kept_weight = 0.0f;
+    LightReservoir reservoir;
     vec3 kept_radiance(0.0f);
     LightSample kept;
     for (int j = 0; j < m; ++j) {
@@ -247,15 +248,14 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
       const vec3 radiance = eval_brdf(s, wo, ls.wi) * ls.weight * (cos_theta / pmf);
       const float w = luminance(radiance);
       if (!(w > 0.0f)) continue;
-      weight_sum += w;
-      if (u_keep * weight_sum < w) {
+      if (reservoir.offer(w, u_keep)) {
         kept = ls;
-        kept_weight = w;
         kept_radiance = radiance;
       }
     }
-    if (kept_weight <= 0.0f) continue;
-    shadow(shadow_ray(p, kept), kept_radiance * (weight_sum / (float(m) * kept_weight * float(n))));
+    if (reservoir.empty()) continue;
+    shadow(shadow_ray(p, kept),
+           kept_radiance * (reservoir.total / (float(m) * reservoir.kept * float(n))));
   }
   if (scene.environment >= 0)
     direct_environment(scene, scene.lights[scene.environment], uint32_t(scene.environment) + 1, s,
@@ -288,11 +288,10 @@ struct ShadowSelection {
   BOUNCE_HD static float u(uint32_t pixel_seed, uint32_t offer) {
     return bits_to_unit_float(hash_u32(pixel_seed ^ hash_u32(offer * 0x9E3779B9u + 0x2545F491u)));
   }
-  // Whether an offer of luminance w, the running sum now `new_total`, replaces the kept sample:
-  // the first is always kept (also where u * total rounds up to w), each later one with
-  // probability w / total: streaming reservoir sampling.
+  // Whether an offer of luminance w, the running sum now `new_total`, replaces the kept sample
+  // (light_resampling.h's streaming reservoir; the row loop calls it by this name).
   BOUNCE_HD static bool takes(float u_offer, float new_total, float w, float kept_so_far) {
-    return (u_offer * new_total < w) | (kept_so_far == 0.0f);
+    return reservoir_takes(u_offer, new_total, w, kept_so_far);
   }
   // Offers one sample (what direct_pixel hands its `shadow`).
   BOUNCE_HD void operator()(const Ray& r, vec3 sample_radiance) {

@@ -164,8 +164,9 @@ TEST(PathSampling, LightPickerFollowsPower) {
 }
 
 // Reflected radiance at a surface point with no geometry of its own, direct light only.
+// (light_candidates as PathSettings', 8 by default.)
 Estimate estimate_direct(const Scene& scene, const SurfaceHit& x, vec3 wo, LightStrategy strategy,
-                         int n) {
+                         int n, int light_candidates = PathSettings().light_candidates) {
   auto tracer = make_embree_tracer(scene);
   const LightPicker lights = LightPicker::build(scene);
   const SceneData data = SceneData::from(scene);
@@ -173,6 +174,7 @@ Estimate estimate_direct(const Scene& scene, const SurfaceHit& x, vec3 wo, Light
   PathSettings settings;
   settings.max_bounces = 0;
   settings.strategy = strategy;
+  settings.light_candidates = light_candidates;
   PathCounters counters;
   Estimate e;
   for (int i = 0; i < n; ++i) {
@@ -295,6 +297,67 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
                 1.5 * std::min(light.standard_error(k), bsdf.standard_error(k)));
       EXPECT_LT(mis.standard_error(k), 0.02 * mis.mean(k)) << "too noisy to test anything";
     }
+  }
+}
+
+// A glossy floor under 30 lamps of equal power (24 small quads facing down, 4 sphere lights and
+// 2 quads facing up, under the floor's reach), all but a few far off: next-event estimation
+// that picks a lamp by power mostly picks a far one. Resampled from candidates it must give
+// the same mean with less noise, and the light strategies must still agree: the MIS weights of
+// the resampled samples are the power pick's on both sides.
+TEST(PathSampling, ResampledLightSamplesAgreeWithPowerPicksAndAreLessNoisy) {
+  Scene s;
+  s.source = "many lamps";
+  Material floor;
+  floor.albedo = vec3(0.5f, 0.4f, 0.3f);
+  floor.roughness = 0.4f;
+  floor.f0 = vec3(0.3f);
+  Material lamp;
+  lamp.albedo = vec3(0.0f);
+  lamp.emission = vec3(8.0f, 7.0f, 5.0f);
+  s.materials = {floor};
+  Mesh mesh;
+  mesh.name = "scene";
+  scene_test::add_quad(mesh, vec3(-10, 0, -10), vec3(0, 0, 20), vec3(20, 0, 0), 0);
+  // Each lamp of its own material: one area light each.
+  const auto add_lamp = [&](vec3 corner, vec3 u, vec3 v) {
+    s.materials.push_back(lamp);
+    scene_test::add_quad(mesh, corner, u, v, uint32_t(s.materials.size() - 1));
+  };
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 4; ++j)  // facing down
+      add_lamp(vec3(-7.5f + 3.0f * float(i), 1.0f + 0.2f * float(j), -6.0f + 4.0f * float(j)),
+               vec3(0.3f, 0, 0), vec3(0, 0, 0.3f));
+  for (int i = 0; i < 2; ++i)  // facing up, above the floor: no light reaches x
+    add_lamp(vec3(-3.0f + 5.0f * float(i), 0.5f, 2.0f), vec3(0, 0, 0.3f), vec3(0.3f, 0, 0));
+  s.meshes.push_back(mesh);
+  for (int i = 0; i < 4; ++i)
+    s.lights.push_back(
+        Light::sphere(vec3(-6.0f + 4.0f * float(i), 1.5f, 7.0f), 0.1f, vec3(6.0f, 5.0f, 4.0f)));
+  s.finalize();
+  ASSERT_EQ(s.area_lights.size(), 26u);
+  const SurfaceHit x{.position = vec3(0.2f, 0.0f, 0.1f),
+                     .normal = vec3(0, 1, 0),
+                     .geometric_normal = vec3(0, 1, 0),
+                     .albedo = floor.albedo,
+                     .f0 = floor.f0,
+                     .roughness = floor.roughness};
+  const vec3 wo = glm::normalize(vec3(-1.0f, 1.0f, 0.3f));
+  const Estimate picked = estimate_direct(s, x, wo, LightStrategy::kMis, 100000, 1);
+  const Estimate resampled = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);
+  const Estimate light = estimate_direct(s, x, wo, LightStrategy::kLightOnly, 100000);
+  const Estimate bsdf = estimate_direct(s, x, wo, LightStrategy::kBsdfOnly, 100000);
+  for (int k = 0; k < 3; ++k) {
+    const double se = std::hypot(picked.standard_error(k), resampled.standard_error(k));
+    EXPECT_NEAR(resampled.mean(k), picked.mean(k), 5.0 * se) << "channel " << k;
+    EXPECT_NEAR(resampled.mean(k), light.mean(k),
+                5.0 * std::hypot(resampled.standard_error(k), light.standard_error(k)))
+        << "channel " << k;
+    EXPECT_NEAR(resampled.mean(k), bsdf.mean(k),
+                5.0 * std::hypot(resampled.standard_error(k), bsdf.standard_error(k)))
+        << "channel " << k;
+    EXPECT_LT(resampled.standard_error(k), 0.5 * picked.standard_error(k)) << "channel " << k;
+    EXPECT_LT(resampled.standard_error(k), 0.02 * resampled.mean(k)) << "too noisy to test";
   }
 }
 

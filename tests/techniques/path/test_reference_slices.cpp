@@ -113,6 +113,12 @@ TEST(ReferenceSlices, SlicesThatDoNotBelongTogetherAreRefused) {
   EXPECT_TRUE(test::contains(error_of({a, slice_file(dir, 2, 2, 4)}), "seed=3"));
   EXPECT_TRUE(test::contains(error_of({a, slice_file(dir, 2, 2, 3, 8)}), "height=16"));
   EXPECT_TRUE(test::contains(error_of({}), "no reference slices"));
+  // Paths that chose their lights differently (bounce reference --light-candidates).
+  ReferenceCheckpointKey one_candidate = key_of(2);
+  one_candidate.light_candidates = 1;
+  const std::string other = (dir / "one_candidate.exr").string();
+  save_exr(other, render_slice(2, 2), reference_attributes(one_candidate, 2));
+  EXPECT_TRUE(test::contains(error_of({a, read_reference_slice(other)}), "light_candidates=8"));
 
   // An EXR without the header bounce reference writes is not a slice.
   const std::string plain = (dir / "plain.exr").string();

@@ -8,6 +8,7 @@
 
 #include <limits>
 
+#include "bounce/core/color.h"
 #include "bounce/core/device.h"
 #include "bounce/core/math.h"
 #include "bounce/core/rng.h"
@@ -16,6 +17,7 @@
 #include "bounce/render/gbuffer_view.h"
 #include "bounce/render/light_pdf.h"
 #include "bounce/render/light_picker.h"
+#include "bounce/render/light_resampling.h"
 #include "bounce/render/light_sampling.h"
 #include "bounce/render/surface.h"
 #include "bounce/scene/scene_view.h"
@@ -43,6 +45,14 @@ struct PathSettings {
   // the path survives with probability min(1, max channel of its throughput).
   int rr_start = 3;
   LightStrategy strategy = LightStrategy::kMis;
+  // Next-event estimation in scenes with more lights than resample_above_lights (LightPicker
+  // entries) keeps one of light_candidates light samples drawn by power, resampled by their
+  // unshadowed contribution (light_resampling.h), as direct light does in such scenes
+  // (DirectSettings::max_looped_lights): a light picked by power alone is, in a level with
+  // dozens of lamps, mostly one out of the vertex's sight. Elsewhere, and with one candidate,
+  // one sample drawn by power.
+  uint32_t resample_above_lights = 8;
+  int light_candidates = 8;
 };
 
 // What a path reads: the scene, its ray queries (sphere lights included) and the light pick.
@@ -83,20 +93,16 @@ BOUNCE_HD inline Pcg32 path_rng(uint32_t pixel, uint32_t sample, uint32_t seed) 
   return Pcg32(splitmix64((uint64_t(pixel) << 32) | sample), seed);
 }
 
-// Next-event estimation at x: one light picked by power, one sample of it, one shadow ray from
-// p (x's offset origin). Returns the radiance x reflects towards wo from that sample.
-BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& settings,
-                                       const SurfaceHit& x, vec3 p, vec3 wo, Pcg32& rng,
-                                       PathCounters& counters) {
-  // Draw the numbers first, so that the path's later decisions use the same ones whatever
-  // happens here.
-  const float u_pick = rng.next_float();
-  const vec2 u = rng.next2();
-  if (ps.lights.empty()) return vec3(0.0f);
+// One light sample's unshadowed estimate at x: the light entry u_pick picks by power, the point u
+// places on it, seen from p (x's offset origin); its radiance towards wo over the sample's
+// probability, with the light strategy's MIS weight. `ray` is its shadow ray; the estimate is 0
+// where the sample brings nothing.
+BOUNCE_HD inline vec3 light_sample_estimate(const PathScene& ps, const PathSettings& settings,
+                                            const SurfaceHit& x, vec3 p, vec3 wo, float u_pick,
+                                            vec2 u, Ray& ray) {
   const uint32_t entry = ps.lights.pick(u_pick);
   const float pick_pdf = ps.lights.pmf[entry];
   if (!(pick_pdf > 0.0f)) return vec3(0.0f);
-
   const EntrySample sample = sample_light_entry(ps.scene, ps.lights.light_count, entry, p, u);
   const LightSample& ls = sample.ls;
   const bool delta = sample.delta;
@@ -112,10 +118,53 @@ BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& 
   if (!delta && settings.strategy == LightStrategy::kMis)
     weight = power_heuristic(pick_pdf * ls.pdf, bsdf_pdf(x, wo, ls.wi));
   if (weight <= 0.0f) return vec3(0.0f);
+  ray = shadow_ray(p, ls);
+  return f * ls.weight * (cos_i * weight / pick_pdf);
+}
+
+// Next-event estimation at x: one light sample, one shadow ray from p (x's offset origin). The
+// sample is drawn by power, or in scenes with many lights resampled from candidates drawn by
+// power (PathSettings::light_candidates). The MIS weights stay those of the sample drawn by
+// power, on both sides (emission_weight): they sum to one whatever the light sample's actual
+// density, and resampling an estimate that carries its weight leaves it unbiased. Returns the
+// radiance x reflects towards wo from that sample.
+BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& settings,
+                                       const SurfaceHit& x, vec3 p, vec3 wo, Pcg32& rng,
+                                       PathCounters& counters) {
+  const int m =
+      ps.lights.count > settings.resample_above_lights ? glm::max(settings.light_candidates, 1) : 1;
+  // Each candidate draws its numbers first, so that the path's later decisions use the same
+  // ones whatever happens here.
+  Ray ray;
+  vec3 estimate(0.0f);
+  if (m == 1) {
+    const float u_pick = rng.next_float();
+    const vec2 u = rng.next2();
+    if (ps.lights.empty()) return vec3(0.0f);
+    estimate = light_sample_estimate(ps, settings, x, p, wo, u_pick, u, ray);
+  } else {
+    LightReservoir reservoir;
+    for (int j = 0; j < m; ++j) {
+      const float u_pick = rng.next_float();
+      const vec2 u = rng.next2();
+      const float u_keep = rng.next_float();
+      Ray candidate_ray;
+      const vec3 e = light_sample_estimate(ps, settings, x, p, wo, u_pick, u, candidate_ray);
+      const float w = luminance(e);
+      if (!(w > 0.0f)) continue;
+      if (reservoir.offer(w, u_keep)) {
+        estimate = e;
+        ray = candidate_ray;
+      }
+    }
+    if (reservoir.empty()) return vec3(0.0f);
+    estimate *= reservoir.total / (float(m) * reservoir.kept);
+  }
+  if (max_component(estimate) <= 0.0f) return vec3(0.0f);
   ++counters.rays;
   // Sphere lights are trace geometry: the one occlusion query sees them too.
-  if (ps.trace.occluded(shadow_ray(p, ls))) return vec3(0.0f);
-  return f * ls.weight * (cos_i * weight / pick_pdf);
+  if (ps.trace.occluded(ray)) return vec3(0.0f);
+  return estimate;
 }
 
 // MIS weight of emission found by a BSDF-sampled direction whose pdf was bsdf_pdf, when the

@@ -67,11 +67,13 @@ struct ReferenceCheckpointKey {
   uint32_t seed = 0;
   int max_bounces = -1, rr_start = 3;
   int first_sample = 0;  // the slice's first sample (ReferenceSettings::first_sample)
+  int light_candidates = PathSettings().light_candidates;  // PathSettings::light_candidates
   bool operator==(const ReferenceCheckpointKey&) const = default;
 };
 
 // The key as NAME=VALUE text fields (scene, width, height, seed, max_bounces, rr_start,
-// sample_offset): what a checkpoint file and a reference image's EXR header record.
+// sample_offset, light_candidates): what a checkpoint file and a reference image's EXR header
+// record.
 std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpointKey& key);
 
 // Saves the state atomically (a temporary file renamed over `path`), in a binary file that

@@ -28,7 +28,8 @@ std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpoin
           {"seed", std::to_string(k.seed)},
           {"max_bounces", std::to_string(k.max_bounces)},
           {"rr_start", std::to_string(k.rr_start)},
-          {"sample_offset", std::to_string(k.first_sample)}};
+          {"sample_offset", std::to_string(k.first_sample)},
+          {"light_candidates", std::to_string(k.light_candidates)}};
 }
 
 void save_reference_checkpoint(const std::string& path, const ReferenceCheckpointKey& key,
