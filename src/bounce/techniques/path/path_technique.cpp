@@ -11,6 +11,9 @@ PathTracing::PathTracing() {
                   "indirect bounces counted (0: none; -1: no limit, Russian roulette ends paths)");
   params_.add_int("rr_start", &rr_start_, 0, kMaxPathBounces,
                   "path vertex from which Russian roulette may end a path");
+  params_.add_int("light_candidates", &light_candidates_, 1, 64,
+                  "scenes with many lights: light samples drawn by power per next-event "
+                  "estimate, one kept by its unshadowed contribution (1: the one drawn)");
   params_.add_int("samples", &samples_, 1, 4096, "paths per pixel per frame");
   params_.add_int("seed", &seed_, 0, 1 << 30, "seed of the paths' random numbers");
 }
@@ -33,6 +36,7 @@ void PathTracing::indirect(const FrameContext& context, Image& out) {
   settings.min_bounces = 1;
   settings.max_bounces = max_bounces_;
   settings.rr_start = rr_start_;
+  settings.light_candidates = light_candidates_;
   // Without accumulation every frame still draws new paths.
   const uint32_t first =
       uint32_t(accumulate ? frames_ : int(context.frame_index)) * uint32_t(samples_);

@@ -25,6 +25,7 @@ class PathTracing final : public Technique {
  private:
   int max_bounces_ = -1;
   int rr_start_ = 3;
+  int light_candidates_ = PathSettings().light_candidates;
   int samples_ = 1;
   int seed_ = 0;
 
