@@ -59,6 +59,17 @@ struct Row3 {
   }
 };
 
+// The same for a vec2.
+struct Row2 {
+  float x[kRowWidth], y[kRowWidth];
+
+  BOUNCE_LANE_INLINE vec2 operator[](int j) const { return {x[j], y[j]}; }
+  BOUNCE_LANE_INLINE void set(int j, vec2 v) {
+    x[j] = v.x;
+    y[j] = v.y;
+  }
+};
+
 // The lane surfaces (lane_surface) of a row's pixels as planes, read from the G-buffer once for
 // all the row's lights.
 struct RowSurfaces {
@@ -116,8 +127,9 @@ struct RowSurfaces {
 // A row of up to kWidth pixels of one tile, for the row loop (compute_direct).
 struct LightRow {
   static constexpr int kWidth = kRowWidth;
-  vec2 offset[kWidth];  // the pattern's rotation at each pixel for the current area light
-  vec2 u[kWidth];
+  // The pattern's rotation at each pixel for the current area light, and each pixel's sample of
+  // the pattern, as planes (x, y): the loop that makes the samples then vectorises.
+  Row2 offset, u;
   uint32_t base[kWidth];
   Row3 q, q_normal;
   Row3 wi, radiance;
@@ -193,11 +205,8 @@ std::vector<float> area_light_corners(const SceneView& scene, const AreaLightVie
 // (Over int indices, which GCC can gather with: src/CMakeLists.txt.)
 void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
   int base[LightRow::kWidth];
-  float ux[LightRow::kWidth];
-  for (int j = 0; j < width; ++j) {
-    base[j] = 0;
-    ux[j] = row.u[j].x;
-  }
+  const float* ux = row.u.x;
+  for (int j = 0; j < width; ++j) base[j] = 0;
   for_cdf_halves(count, [&](uint32_t half) {
     BOUNCE_IVDEP
     for (int j = 0; j < width; ++j) base[j] = cdf_halve(cdf, base[j], int(half), ux[j]);
@@ -219,9 +228,9 @@ void search_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, 
 constexpr uint32_t kScannedCdf = 16;
 void scan_cdf_row(const float* cdf, uint32_t count, int width, LightRow& row, float* stretched) {
   const uint32_t last = count - 1;
-  float ux[LightRow::kWidth], start[LightRow::kWidth], end[LightRow::kWidth];
+  const float* ux = row.u.x;
+  float start[LightRow::kWidth], end[LightRow::kWidth];
   for (int j = 0; j < width; ++j) {
-    ux[j] = row.u[j].x;  // (a plane: each value's pass reads it)
     row.base[j] = 0;
     start[j] = 0.0f;
     end[j] = cdf[last];
@@ -247,13 +256,14 @@ void pick_area_light_row(const AreaLightView& light, const float* corners, int k
                          LightRow& row) {
   const float* cdf = light.cdf;
   const uint32_t count = light.triangle_count;
-  for (int j = 0; j < width; ++j) row.u[j] = pattern_sample(k, n, row.offset[j]);
-  float stretched[LightRow::kWidth], uy[LightRow::kWidth];
+  BOUNCE_IVDEP
+  for (int j = 0; j < width; ++j) row.u.set(j, pattern_sample(k, n, row.offset[j]));
+  float stretched[LightRow::kWidth];
   if (count <= kScannedCdf)
     scan_cdf_row(cdf, count, width, row, stretched);
   else
     search_cdf_row(cdf, count, width, row, stretched);
-  for (int j = 0; j < width; ++j) uy[j] = row.u[j].y;
+  const float* uy = row.u.y;
   BOUNCE_IVDEP
   for (int j = 0; j < width; ++j) {
     const int e = int(row.base[j]);
@@ -401,7 +411,7 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
           pattern_rotation(area_light_id(scene, a), settings_.frame, settings_.seed);
       BOUNCE_IVDEP
       for (int j = 0; j < width; ++j)
-        row.offset[j] = pattern_offset_at({uint32_t(x0 + j), uint32_t(y)}, rotation);
+        row.offset.set(j, pattern_offset_at({uint32_t(x0 + j), uint32_t(y)}, rotation));
       for (int k = 0; k < n; ++k) {
         pick_area_light_row(light, corners_[a].data(), k, n, width, row);
         if (glossy)
