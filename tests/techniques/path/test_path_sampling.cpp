@@ -255,16 +255,26 @@ TEST(PathSampling, PunctualLightsGiveTheirIrradiance) {
   EXPECT_LT(e.standard_error(0), 0.01 * expected);
 }
 
+Material floor_material(vec3 albedo, float roughness, vec3 f0) {
+  Material m;
+  m.albedo = albedo;
+  m.roughness = roughness;
+  m.f0 = f0;
+  return m;
+}
+// Black, emitting `emission`.
+Material lamp_material(vec3 emission) {
+  Material m;
+  m.albedo = vec3(0.0f);
+  m.emission = emission;
+  return m;
+}
+
 TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
   Scene s;
   s.source = "glossy";
-  Material floor;
-  floor.albedo = vec3(0.4f, 0.3f, 0.2f);
-  floor.roughness = 0.25f;
-  floor.f0 = vec3(0.6f);
-  Material lamp;
-  lamp.albedo = vec3(0.0f);
-  lamp.emission = vec3(6.0f, 5.0f, 4.0f);
+  const Material floor = floor_material(vec3(0.4f, 0.3f, 0.2f), 0.25f, vec3(0.6f));
+  const Material lamp = lamp_material(vec3(6.0f, 5.0f, 4.0f));
   s.materials = {floor, lamp};
   Mesh mesh;
   mesh.name = "scene";
@@ -308,13 +318,8 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
 TEST(PathSampling, ResampledLightSamplesAgreeWithPowerPicksAndAreLessNoisy) {
   Scene s;
   s.source = "many lamps";
-  Material floor;
-  floor.albedo = vec3(0.5f, 0.4f, 0.3f);
-  floor.roughness = 0.4f;
-  floor.f0 = vec3(0.3f);
-  Material lamp;
-  lamp.albedo = vec3(0.0f);
-  lamp.emission = vec3(8.0f, 7.0f, 5.0f);
+  const Material floor = floor_material(vec3(0.5f, 0.4f, 0.3f), 0.4f, vec3(0.3f));
+  const Material lamp = lamp_material(vec3(8.0f, 7.0f, 5.0f));
   s.materials = {floor};
   Mesh mesh;
   mesh.name = "scene";
