@@ -31,8 +31,8 @@ struct DirectSettings {
   uint32_t seed = 0;
   // Scenes with more lights than this (lights and area lights together) take light_samples
   // resampled light samples per pixel instead of samples of every light (direct_pixel_resampled).
-  uint32_t max_looped_lights = 8;
-  int candidates = 8;  // resampling: candidates drawn by power per light sample
+  uint32_t max_looped_lights = kResampleAboveLights;
+  int candidates = kLightCandidates;  // resampling: candidates drawn by power per light sample
   // One shadow ray per pixel, for one of its light samples chosen by unshadowed contribution
   // (ShadowSelection), instead of one ray per light sample.
   bool one_shadow_ray = false;

@@ -8,9 +8,17 @@
 // one: the candidates arrive one at a time.
 #pragma once
 
+#include <cstdint>
+
 #include "bounce/core/device.h"
 
 namespace bounce {
+
+// Scenes with more lights than this (LightPicker entries) resample their light samples, direct
+// light's (DirectSettings) and the path tracer's next-event estimates (PathSettings), each from
+// this many candidates drawn by power.
+inline constexpr uint32_t kResampleAboveLights = 8;
+inline constexpr int kLightCandidates = 8;
 
 // Whether an offer of weight w, the running sum now `new_total`, replaces the kept one: the first
 // is always kept (also where u * total rounds up to w), each later one with probability

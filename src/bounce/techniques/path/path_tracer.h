@@ -51,8 +51,8 @@ struct PathSettings {
   // (DirectSettings::max_looped_lights): a light picked by power alone is, in a level with
   // dozens of lamps, mostly one out of the vertex's sight. Elsewhere, and with one candidate,
   // one sample drawn by power.
-  uint32_t resample_above_lights = 8;
-  int light_candidates = 8;
+  uint32_t resample_above_lights = kResampleAboveLights;
+  int light_candidates = kLightCandidates;
 };
 
 // What a path reads: the scene, its ray queries (sphere lights included) and the light pick.
