@@ -163,7 +163,7 @@ struct RowSelection {
       const bool carries = w > 0.0f;
       const float sum = total[j] + pick(carries, w, 0.0f);
       const bool take =
-          carries & ShadowSelection::takes(ShadowSelection::u(seed[j], offers[j]), sum, w, kept[j]);
+          carries & reservoir_takes(ShadowSelection::u(seed[j], offers[j]), sum, w, kept[j]);
       offers[j] += uint32_t(carries);
       total[j] = sum;
       kept[j] = pick(take, w, kept[j]);

@@ -272,10 +272,9 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
 struct ShadowSelection {
   Ray ray;
   vec3 radiance{0.0f};
-  float kept = 0.0f;    // the kept sample's luminance
-  float total = 0.0f;   // the sum over all samples offered
-  uint32_t seed = 0;    // the pixel's (for_pixel)
-  uint32_t offers = 0;  // samples offered so far that carry light
+  LightReservoir reservoir;  // over the samples' luminances
+  uint32_t seed = 0;         // the pixel's (for_pixel)
+  uint32_t offers = 0;       // samples offered so far that carry light
 
   ShadowSelection() = default;  // a placeholder until for_pixel
   BOUNCE_HD explicit ShadowSelection(uint32_t pixel_seed) : seed(pixel_seed) {}
@@ -288,20 +287,13 @@ struct ShadowSelection {
   BOUNCE_HD static float u(uint32_t pixel_seed, uint32_t offer) {
     return bits_to_unit_float(hash_u32(pixel_seed ^ hash_u32(offer * 0x9E3779B9u + 0x2545F491u)));
   }
-  // Whether an offer of luminance w, the running sum now `new_total`, replaces the kept sample
-  // (light_resampling.h's streaming reservoir; the row loop calls it by this name).
-  BOUNCE_HD static bool takes(float u_offer, float new_total, float w, float kept_so_far) {
-    return reservoir_takes(u_offer, new_total, w, kept_so_far);
-  }
   // Offers one sample (what direct_pixel hands its `shadow`).
   BOUNCE_HD void operator()(const Ray& r, vec3 sample_radiance) {
     const float w = luminance(sample_radiance);
     if (!(w > 0.0f)) return;
-    total += w;
-    if (takes(u(seed, offers++), total, w, kept)) {
+    if (reservoir.offer(w, u(seed, offers++))) {
       ray = r;
       radiance = sample_radiance;
-      kept = w;
     }
   }
   // The kept sample's radiance weighted by (sum of luminances) / (its own).
@@ -311,7 +303,7 @@ struct ShadowSelection {
   // Hands the kept sample, weighted, to shadow(ray, radiance); nothing when no sample came.
   template <typename Shadow>
   BOUNCE_HD void finish(Shadow& shadow) const {
-    if (kept > 0.0f) shadow(ray, weighted(radiance, kept, total));
+    if (!reservoir.empty()) shadow(ray, weighted(radiance, reservoir.kept, reservoir.total));
   }
 };
 
