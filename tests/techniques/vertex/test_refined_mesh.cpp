@@ -101,6 +101,27 @@ TEST(RefinedMesh, LocatesEveryHitAndCoversTheCoarseTriangles) {
   }
 }
 
+// A refined triangle's map gives its corners the weights (1, 0, 0), (0, 1, 0), (0, 0, 1) and its
+// centroid a third each; a triangle without area has no point on it.
+TEST(RefinedMesh, LeafMapsWeighTheCornersAndRefuseDegenerateTriangles) {
+  const vec2 c[3] = {{0.25f, 0.125f}, {0.75f, 0.1875f}, {0.3125f, 0.625f}};
+  LeafMap map = LeafMap::of(c[0], c[1], c[2]);
+  RefinedMeshView v;
+  v.leaf_map = &map;
+  vec3 w;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(weights_on_leaf(v, 0, c[k], w));
+    EXPECT_NEAR(w[k], 1.0f, 1e-6f);
+    EXPECT_NEAR(w[(k + 1) % 3], 0.0f, 1e-6f);
+  }
+  EXPECT_TRUE(weights_on_leaf(v, 0, (c[0] + c[1] + c[2]) / 3.0f, w));
+  EXPECT_NEAR(glm::length(w - vec3(1.0f / 3.0f)), 0.0f, 1e-6f);
+  EXPECT_FALSE(weights_on_leaf(v, 0, c[1] + (c[1] - c[0]), w));  // beyond a corner
+  map = LeafMap::of(c[0], c[1], 2.0f * c[1] - c[0]);             // collinear corners
+  EXPECT_FALSE(weights_on_leaf(v, 0, c[1], w));
+  EXPECT_EQ(w, vec3(1.0f, 0.0f, 0.0f));
+}
+
 // A hint (a neighbouring pixel's refined triangle) changes nothing: where the point lies on the
 // hinted triangle it is taken, with the weights the descent finds; a hint on another triangle,
 // or on another coarse triangle, falls back to the descent.

@@ -162,6 +162,7 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
   const uint32_t leaves = uint32_t(work.size());
   leaf_points_.resize(leaves);
   leaf_bary_.resize(size_t(leaves) * 3);
+  leaf_map_.resize(leaves);
   leaf_coarse_.resize(leaves);
   leaf_keys_.resize(leaves);
   for (uint32_t t = 0; t < leaves; ++t) {
@@ -170,6 +171,7 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
     leaf_points_[t] = w.points;
     leaf_coarse_[t] = w.coarse;
     for (int k = 0; k < 3; ++k) leaf_bary_[size_t(t) * 3 + k] = w.bary[k];
+    leaf_map_[t] = LeafMap::of(w.bary[0], w.bary[1], w.bary[2]);
   }
   // Links to a leaf node become links to the leaf itself.
   for (RefineNode& n : nodes_) {
@@ -218,6 +220,23 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
   }
 }
 
+LeafMap LeafMap::of(vec2 c0, vec2 c1, vec2 c2) {
+  // s = cross(b - c0, e2) / det and t = cross(e1, b - c0) / det, expanded in b (in double: the
+  // determinant of a deep split is small).
+  const double e1x = double(c1.x) - c0.x, e1y = double(c1.y) - c0.y;
+  const double e2x = double(c2.x) - c0.x, e2y = double(c2.y) - c0.y;
+  const double det = e1x * e2y - e1y * e2x;
+  if (det == 0.0) return {};
+  const double inv = 1.0 / det;
+  LeafMap map;
+  map.s = vec3(float(-(double(c0.x) * e2y - double(c0.y) * e2x) * inv), float(e2y * inv),
+               float(-e2x * inv));
+  map.t = vec3(float(-(e1x * double(c0.y) - e1y * double(c0.x)) * inv), float(-e1y * inv),
+               float(e1x * inv));
+  // A triangle too thin for floats: no point lies on it (as when the determinant is 0).
+  return is_finite(map.s) && is_finite(map.t) ? map : LeafMap{};
+}
+
 void RefinedMesh::key_geometry(const Scene& scene, uint32_t key) {
   const uint32_t coarse = key_coarse_[key];
   const Mesh& mesh = scene.meshes[key_mesh_[key]];
@@ -256,7 +275,7 @@ RefinedMeshView RefinedMesh::view() const {
   v.root = root_.data();
   v.nodes = nodes_.data();
   v.leaf_keys = leaf_keys_.data();
-  v.leaf_bary = leaf_bary_.data();
+  v.leaf_map = leaf_map_.data();
   v.leaf_coarse = leaf_coarse_.data();
   v.key_position = key_position_.data();
   v.key_normal = key_normal_.data();

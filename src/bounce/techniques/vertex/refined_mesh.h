@@ -34,11 +34,23 @@ struct RefineNode {
   uint32_t negative = kRefineLeaf;
 };
 
+// A refined triangle's corner weights (s, t) at coarse barycentrics b, as affine functions:
+// s = s.x + s.y b.x + s.z b.y, and t alike. Made once when the mesh is refined, so that locating
+// a pixel takes no division (the two divisions by the corners' determinant were a tenth of the
+// locate stage). A degenerate triangle's map gives s = t = -1: no point lies on it.
+struct LeafMap {
+  vec3 s{-1.0f, 0.0f, 0.0f};
+  vec3 t{-1.0f, 0.0f, 0.0f};
+
+  // The map of the triangle with corners c0, c1, c2 (coarse barycentrics).
+  static LeafMap of(vec2 c0, vec2 c1, vec2 c2);
+};
+
 struct RefinedMeshView {
   const uint32_t* root = nullptr;  // per coarse triangle (global id): its node
   const RefineNode* nodes = nullptr;
-  const uvec3* leaf_keys = nullptr;  // per refined triangle: the keys of its corners
-  const vec2* leaf_bary = nullptr;   // per refined triangle: its 3 corners, coarse barycentrics
+  const uvec3* leaf_keys = nullptr;   // per refined triangle: the keys of its corners
+  const LeafMap* leaf_map = nullptr;  // per refined triangle: its weights at coarse barycentrics
   const uint32_t* leaf_coarse = nullptr;  // per refined triangle: its coarse triangle
   const vec3* key_position = nullptr;
   const vec3* key_normal = nullptr;  // unit, on the side the coarse triangle's winding faces
@@ -61,12 +73,9 @@ struct RefinedPoint {
 // weights unclamped are all at least 0).
 BOUNCE_HD inline bool weights_on_leaf(const RefinedMeshView& m, uint32_t leaf, vec2 b,
                                       vec3& weights) {
-  weights = vec3(1.0f, 0.0f, 0.0f);
-  const vec2* c = m.leaf_bary + size_t(leaf) * 3;
-  const vec2 e1 = c[1] - c[0], e2 = c[2] - c[0], d = b - c[0];
-  const float det = cross2(e1, e2);
-  if (det == 0.0f) return false;
-  const float s_raw = cross2(d, e2) / det, t_raw = cross2(e1, d) / det;
+  const LeafMap& map = m.leaf_map[leaf];
+  const float s_raw = map.s.x + map.s.y * b.x + map.s.z * b.y;
+  const float t_raw = map.t.x + map.t.y * b.x + map.t.z * b.y;
   const float s = glm::clamp(s_raw, 0.0f, 1.0f);
   const float t = glm::clamp(t_raw, 0.0f, 1.0f - s);
   weights = vec3(1.0f - s - t, s, t);
@@ -136,7 +145,8 @@ class RefinedMesh {
   std::vector<RefineNode> nodes_;
   std::vector<uvec3> leaf_keys_;
   std::vector<uvec3> leaf_points_;
-  std::vector<vec2> leaf_bary_;
+  std::vector<vec2> leaf_bary_;  // per refined triangle: its 3 corners, coarse barycentrics
+  std::vector<LeafMap> leaf_map_;
   std::vector<uint32_t> leaf_coarse_;
   std::vector<vec3> point_position_;
   std::vector<vec3> key_position_;
