@@ -60,7 +60,7 @@ TEST(MemoryEstimate, VertexCountsTheSplitTreeAndTheRefinement) {
   s.keep_unchanged = false;
   EXPECT_EQ(vertex.memory_estimate(scene), 79920u);
   s.mesh_refinement = 1000;
-  EXPECT_EQ(vertex.memory_estimate(scene), 79920u + 375000u);
+  EXPECT_EQ(vertex.memory_estimate(scene), 79920u + 350000u);
   // An absurd split count saturates instead of wrapping.
   s.diffuse_reflections = 1 << 30;
   s.recursion_depth = 4;

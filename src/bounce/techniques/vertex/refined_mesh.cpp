@@ -161,7 +161,6 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
   // The refined triangles are the leaves; their nodes say so.
   const uint32_t leaves = uint32_t(work.size());
   leaf_points_.resize(leaves);
-  leaf_bary_.resize(size_t(leaves) * 3);
   leaf_map_.resize(leaves);
   leaf_coarse_.resize(leaves);
   leaf_keys_.resize(leaves);
@@ -170,7 +169,6 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
     nodes_[w.node].positive = nodes_[w.node].negative = t | kRefineLeaf;
     leaf_points_[t] = w.points;
     leaf_coarse_[t] = w.coarse;
-    for (int k = 0; k < 3; ++k) leaf_bary_[size_t(t) * 3 + k] = w.bary[k];
     leaf_map_[t] = LeafMap::of(w.bary[0], w.bary[1], w.bary[2]);
   }
   // Links to a leaf node become links to the leaf itself.
@@ -201,7 +199,7 @@ void RefinedMesh::build(const Scene& scene, uint32_t added) {
       key_position_.push_back(vec3(0.0f));
       key_normal_.push_back(vec3(0.0f));
       key_coarse_.push_back(leaf_coarse_[t]);
-      key_bary_.push_back(leaf_bary_[size_t(t) * 3 + k]);
+      key_bary_.push_back(work[t].bary[k]);
       key_mesh_.push_back(mesh_of_coarse_[leaf_coarse_[t]]);
       key_geometry(scene, key);
       const vec3 n = key_normal_[key];

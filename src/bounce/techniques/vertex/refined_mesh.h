@@ -145,7 +145,6 @@ class RefinedMesh {
   std::vector<RefineNode> nodes_;
   std::vector<uvec3> leaf_keys_;
   std::vector<uvec3> leaf_points_;
-  std::vector<vec2> leaf_bary_;  // per refined triangle: its 3 corners, coarse barycentrics
   std::vector<LeafMap> leaf_map_;
   std::vector<uint32_t> leaf_coarse_;
   std::vector<vec3> point_position_;

@@ -93,10 +93,10 @@ uint64_t VertexPhotonMapping::memory_estimate(const Scene& scene) const {
   // the kd-tree's copy in tree order; keep_unchanged holds one more slot (what a refill replaced).
   const double photon_copies =
       slot * double(s.accumulation_frames) * 3.0 + (s.keep_unchanged ? slot : 0.0);
-  // Measured: peak resident memory grows by 367 bytes per triangle the refinement adds
+  // Measured: peak resident memory grows by 343 bytes per triangle the refinement adds
   // (`/usr/bin/time -f %M bounce bench cornell -t vertex -W 64 -H 64 --refine N -n 1`, N = 0
-  // and 2,000,000: 35 MB and 752 MB, with the leaves' weight maps).
-  constexpr double kRefinedTriangleBytes = 375.0;
+  // and 2,000,000: 35 MB and 705 MB).
+  constexpr double kRefinedTriangleBytes = 350.0;
   return saturating_bytes(photon_copies * 3.0 * sizeof(vec3) +
                           double(s.mesh_refinement) * kRefinedTriangleBytes);
 }
