@@ -63,43 +63,78 @@ struct Reprojected {
   float length = 0.0f;
   bool kept = false;
 };
-// Bilinear taps around where the surface was: pixel centres are at integer + 0.5, and motion is
-// in this frame's pixels (scaled to the previous frame's when the size changed). A tap is kept
-// where last frame's pixel shows this surface (SVGF's tests: the same object, depth within
-// depth_tolerance relative, normals within normal_tolerance). Branch-free: taps outside the
-// image read its nearest pixel with weight 0, and a pixel without a surface keeps nothing. The
-// taps' index is a 32-bit int (images hold far fewer than 2^31 pixels): with a 64-bit one GCC 12
-// leaves the CPU's row loop scalar, with this one it gathers eight pixels' taps at once.
-BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
-                                                         size_t i) {
-  Reprojected r;
+// The bilinear footprint of this frame's pixel (x, y) in the last frame: a 2 x 2 block of its
+// pixels from pixel q (row-major in the last frame) and each one's bilinear weight, in the order
+// (0, 0), (1, 0), (0, 1), (1, 1). Pixel centres are at integer + 0.5, and motion is in this
+// frame's pixels (scaled to the previous frame's when the size changed). The block is moved
+// inside the image where the footprint crosses its border (a 1-pixel-wide image: its second
+// column or row reads the first), and a pixel outside the footprint, or outside the image,
+// weighs 0. The block's columns and rows are then adjacent in memory: the CPU loads each of its
+// rows as one pair (reproject_eight).
+struct BilinearTaps {
+  int q = 0;
+  int dq_x = 1;  // from a column of the block to the next: 1, or 0 in a 1-pixel-wide image
+  int dq_y = 0;  // from a row of the block to the next: the width, or 0 in a 1-pixel-high image
+  float w[4] = {};
+};
+BOUNCE_HD BOUNCE_LANE_INLINE BilinearTaps bilinear_taps(const TemporalPass& p, int x, int y,
+                                                        size_t i) {
   const vec2 m = p.g.motion[i];
   const float sx = float(p.prev_width) / float(p.width),
               sy = float(p.prev_height) / float(p.height);
   const float px = (float(x) + 0.5f - m.x) * sx - 0.5f, py = (float(y) + 0.5f - m.y) * sy - 0.5f;
   const float fx0 = std::floor(px), fy0 = std::floor(py);
   const float fx = px - fx0, fy = py - fy0;
+  // (Clamped as floats first: a far motion vector must not overflow the conversion.)
   const int x0 = int(glm::clamp(fx0, -2.0f, float(p.prev_width))),
             y0 = int(glm::clamp(fy0, -2.0f, float(p.prev_height)));
-  const uint32_t object = p.g.mesh[i];
-  const float z = p.g.depth[i], dz_max = p.s.depth_tolerance * z;
-  const vec3 normal = p.g.normal[i];
+  const int bx = glm::clamp(x0, 0, glm::max(p.prev_width - 2, 0)),
+            by = glm::clamp(y0, 0, glm::max(p.prev_height - 2, 0));
+  // The weight of column (row) c of the block: of the footprint's first or second, inside.
+  auto weight = [](int c, int first, float f, int size) BOUNCE_LANE_LAMBDA_INLINE {
+    const float w = (c == first ? 1.0f - f : 0.0f) + (c == first + 1 ? f : 0.0f);
+    return c < size ? w : 0.0f;
+  };
+  const float wx0 = weight(bx, x0, fx, p.prev_width), wx1 = weight(bx + 1, x0, fx, p.prev_width);
+  const float wy0 = weight(by, y0, fy, p.prev_height), wy1 = weight(by + 1, y0, fy, p.prev_height);
+  BilinearTaps t;
+  t.q = by * p.prev_width + bx;
+  t.dq_x = p.prev_width > 1 ? 1 : 0;
+  t.dq_y = p.prev_height > 1 ? p.prev_width : 0;
+  t.w[0] = wx0 * wy0;
+  t.w[1] = wx1 * wy0;
+  t.w[2] = wx0 * wy1;
+  t.w[3] = wx1 * wy1;
+  return t;
+}
+
+// Whether last frame's pixel q shows the surface this frame's pixel i sees (SVGF's tests: the
+// same object, depth within depth_tolerance relative, normals within normal_tolerance).
+BOUNCE_HD BOUNCE_LANE_INLINE bool same_surface(const TemporalPass& p, size_t i, int q) {
+  const float z = p.g.depth[i];
+  const bool same_object = p.prev_surface.object[q] == p.g.mesh[i];
+  const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= p.s.depth_tolerance * z;
+  const bool near_normal =
+      glm::dot(p.prev_surface.normal(size_t(q)), p.g.normal[i]) >= p.s.normal_tolerance;
+  return same_object & near_depth & near_normal;
+}
+
+// Last frame's history where this frame's pixel (x, y) saw it: the taps of its bilinear
+// footprint that show this surface, normalised. Branch-free: a pixel without a surface keeps
+// nothing. The taps' index is a 32-bit int (images hold far fewer than 2^31 pixels): with a
+// 64-bit one GCC 12 leaves the CPU's row loop scalar. (The CPU runs reproject_eight, the same
+// for eight pixels at once where the image allows.)
+BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, int x, int y,
+                                                         size_t i) {
+  Reprojected r;
+  const BilinearTaps taps = bilinear_taps(p, x, y, i);
   float weight = 0.0f;
   unrolled<4>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
     constexpr int dx = decltype(k)::value & 1, dy = decltype(k)::value >> 1;
-    const int qx = x0 + dx, qy = y0 + dy;
-    const bool inside = (qx >= 0) & (qy >= 0) & (qx < p.prev_width) & (qy < p.prev_height);
-    // The nearest texel inside: every tap reads the image, and one outside weighs nothing. (With
-    // a select of texel 0 instead, compute-sanitizer caught the GPU reading far outside it.)
-    const int q =
-        glm::clamp(qy, 0, p.prev_height - 1) * p.prev_width + glm::clamp(qx, 0, p.prev_width - 1);
-    const bool same_object = p.prev_surface.object[q] == object;
-    const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= dz_max;
-    const bool near_normal = glm::dot(p.prev_surface.normal(q), normal) >= p.s.normal_tolerance;
-    const bool same = same_object & near_depth & near_normal;
-    const float w = (inside & same) ? (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy) : 0.0f;
+    const int q = taps.q + dx * taps.dq_x + dy * taps.dq_y;
+    const float w = same_surface(p, i, q) ? taps.w[k] : 0.0f;
     weight += w;
-    r.h.add(w, p.prev.get(q));
+    r.h.add(w, p.prev.get(size_t(q)));
     r.length += w * p.prev_length[q];
   });
   r.kept = (weight >= kMinHistoryWeight) & p.g.hit(i);

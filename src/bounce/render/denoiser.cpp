@@ -14,6 +14,7 @@
 #include "bounce/render/denoise_half.h"
 #include "bounce/render/denoise_kernels.h"
 #include "bounce/render/denoise_plan.h"
+#include "bounce/render/denoise_reproject_cpu.h"
 #include "bounce/render/denoise_temporal.h"
 #include "bounce/render/denoise_variance.h"
 
@@ -162,6 +163,33 @@ void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, i
       [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
 }
 
+// Row y's reprojected history (denoise::reproject_moved at every pixel) into `row`: eight pixels
+// at a time where the CPU and the image allow (denoise::reproject_eight).
+void reproject_row(const denoise::TemporalPass& pass, int y, const denoise::ReprojectedRow& row) {
+  const denoise::TemporalPass p = pass;  // (a local copy: the row's stores cannot change it)
+  const size_t first = size_t(y) * size_t(p.width);
+  int x = 0;
+#if BOUNCE_REPROJECT_EIGHT
+  if (denoise::reproject_eight_fits(p)) {
+    thread_local std::vector<float> tap_planes;
+    thread_local std::vector<int> tap_q;
+    tap_planes.resize(7 * size_t(p.width));
+    tap_q.resize(size_t(p.width));
+    denoise::TapRow taps;
+    taps.q = tap_q.data();
+    for (int k = 0; k < 4; ++k) taps.w[k] = tap_planes.data() + size_t(k) * size_t(p.width);
+    for (int c = 0; c < 3; ++c)
+      taps.normal[c] = tap_planes.data() + size_t(4 + c) * size_t(p.width);
+    BOUNCE_IVDEP
+    for (int k = 0; k < p.width; ++k) taps.store(p, k, y, first + size_t(k));
+    for (; x + 8 <= p.width; x += 8) denoise::reproject_eight(p, taps, x, y, row);
+  }
+#endif
+  // (The row's last pixels, or every pixel without AVX2 or in a 1-pixel-wide or -high image.)
+  BOUNCE_IVDEP
+  for (; x < p.width; ++x) row.store(x, denoise::reproject_moved(p, x, y, first + size_t(x)));
+}
+
 // The temporal pass row by row: the reprojected history into row planes (clipped where the world
 // changed, from `demodulated`'s planes), then the blend, in loops the compiler vectorises. Marks
 // the rows with a short history.
@@ -195,9 +223,7 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       row_planes.resize(10 * size_t(p.width));
       denoise::ReprojectedRow row;
       for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
-      BOUNCE_IVDEP
-      for (int x = 0; x < p.width; ++x)
-        row.store(x, denoise::reproject_moved(p, x, y, first + size_t(x)));
+      reproject_row(p, y, row);
       if (p.s.clip) clip_row<kIndirect>(p, demodulated, y, row);
       const float* v[10];
       for (int c = 0; c < 10; ++c) v[c] = row.v[c];
