@@ -15,6 +15,7 @@
 #include "bounce/core/parallel.h"
 #include "bounce/core/rng.h"
 #include "bounce/render/denoise_half.h"
+#include "bounce/render/denoise_plan.h"
 #include "bounce/render/denoiser.h"
 
 namespace bounce {
@@ -240,6 +241,48 @@ TEST(Denoiser, HalfResolutionDirectLightOnlyWhileTheHistoryIsShort) {
       EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
     else
       EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+  }
+}
+
+// While the world changes (a flashlight carried through a level) the history is clipped to each
+// frame's neighbourhood, frame after frame, and stays about as noisy as a short one: direct light
+// is filtered at half resolution then too, long after the last reset, unless half_direct_frames
+// turns half resolution off.
+TEST(Denoiser, HalfResolutionDirectLightWhileTheWorldChanges) {
+  DenoiseSettings s;
+  s.half_direct_frames = 4;
+  const int height = 64, rest_frames = 0, long_ago = 100;
+  for (const bool clipped : {false, true}) {
+    const denoise::AtrousPlan p =
+        denoise::atrous_plan(s, true, true, height, rest_frames, long_ago, clipped);
+    EXPECT_EQ(p.direct_half, clipped);
+    EXPECT_EQ(p.direct_iterations, clipped ? s.atrous_iterations - 1 : s.atrous_iterations);
+    // (Every pixel's history is long: the spatial variance stays at full resolution.)
+    EXPECT_FALSE(p.half_variance);
+  }
+  s.half_direct_frames = 0;
+  EXPECT_FALSE(
+      denoise::atrous_plan(s, true, true, height, rest_frames, long_ago, true).direct_half);
+
+  // The frames themselves: after the first frames, world changes differ from a denoiser that
+  // never halves direct light, camera moves do not.
+  const int n = 24;
+  const GBuffer g = plane(n, n);
+  Pcg32 rng(44);
+  Denoiser halved, full;
+  halved.settings().half_direct_frames = 2;
+  full.settings().half_direct_frames = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Image light = noisy(n, n, rng, 0.5f, [](int, int) { return 1.0f; });
+    const HistoryState state = k == 0  ? HistoryState::kReset
+                               : k < 5 ? HistoryState::kCameraMoved
+                                       : HistoryState::kWorldChanged;
+    const Image a = run(halved, g, state, light).direct;
+    const Image b = run(full, g, state, light).direct;
+    if (k >= 2 && k < 5)
+      EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+    else
+      EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
   }
 }
 

@@ -64,16 +64,21 @@ struct AtrousPlan {
 };
 
 // `rest_frames`: consecutive frames at rest up to this one (0 when not at rest);
-// `history_frames`: frames since the last reset before this one (0 at a reset).
+// `history_frames`: frames since the last reset before this one (0 at a reset); `clipped`: this
+// frame's history was clipped to its neighbourhood (TemporalSettings::clip: the world changed).
 inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_indirect, int height,
-                              int rest_frames, int history_frames) {
+                              int rest_frames, int history_frames, bool clipped) {
   AtrousPlan p;
   p.direct_iterations =
       direct_iterations_at_rest(s.atrous_iterations, s.rest_atrous_frames, rest_frames);
   // A short history holds noise as wide as the full-resolution passes reach: half resolution
   // reaches twice as far, with one pass fewer (steps 1 and 2 there span what 1, 2 and 4 span at
-  // full resolution) at a quarter of the cost per pass.
-  p.direct_half = spatial && p.direct_iterations > 0 && history_frames < s.half_direct_frames;
+  // full resolution) at a quarter of the cost per pass. So does a history clipped to this
+  // frame's noisy neighbourhood, frame after frame while the world changes (a flashlight carried
+  // through a level): there the half-resolution passes measured closer to the reference, not only
+  // faster (docs/benchmarks.md, stop 47).
+  p.direct_half = spatial && p.direct_iterations > 0 && s.half_direct_frames > 0 &&
+                  (history_frames < s.half_direct_frames || clipped);
   if (p.direct_half) p.direct_iterations = std::max(p.direct_iterations - 1, 1);
   p.indirect_iterations =
       spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, height) : 0;
