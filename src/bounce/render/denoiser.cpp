@@ -337,31 +337,38 @@ void column_sums(const float* const (&sums)[5], size_t width, int y, int height,
 // The spatial variance's row sums for row y (denoise_variance.h), on the CPU: each pixel's
 // moments once into a padded row, then each box as a sum over that row, in a loop the compiler
 // vectorises (box_row_pixel gathers its box's texels per pixel instead).
-void box_row(const denoise::BoxPass& p, int y) {
+void box_row(const denoise::BoxPass& pass, int y) {
+  const denoise::BoxPass p = pass;  // (a local copy and plain pointers: the loops vectorise)
   constexpr int r = denoise::kVarianceBox;
   const size_t n = size_t(p.width) + 2 * r;
   thread_local std::vector<float> moments;
   moments.resize(5 * n);
-  // (Only the r entries at each end stay zero; the loop below writes the rest.)
+  float* m[5];
   for (int k = 0; k < 5; ++k) {
-    float* m = moments.data() + size_t(k) * n;
-    std::fill(m, m + r, 0.0f);
-    std::fill(m + n - r, m + n, 0.0f);
+    m[k] = moments.data() + size_t(k) * n;
+    // (Only the r entries at each end stay zero; the loop below writes the rest.)
+    std::fill(m[k], m[k] + r, 0.0f);
+    std::fill(m[k] + n - r, m[k] + n, 0.0f);
   }
   const size_t row = size_t(y) * size_t(p.width);
+  BOUNCE_IVDEP
   for (int x = 0; x < p.width; ++x) {
-    float m[5];
-    denoise::box_moments(p.history.get(row + size_t(x)), p.depth[row + size_t(x)], m);
-    for (int k = 0; k < 5; ++k) moments[size_t(k) * n + size_t(x + r)] = m[k];
+    float v[5];
+    denoise::box_moments(p.history.get(row + size_t(x)), p.depth[row + size_t(x)], v);
+    m[0][x + r] = v[0];
+    m[1][x + r] = v[1];
+    m[2][x + r] = v[2];
+    m[3][x + r] = v[3];
+    m[4][x + r] = v[4];
   }
-  for (int k = 0; k < 5; ++k)
-    padded_row_sums<r>(moments.data() + size_t(k) * n, p.width, p.sums[k] + row);
+  for (int k = 0; k < 5; ++k) padded_row_sums<r>(m[k], p.width, p.sums[k] + row);
 }
 
 // The spatial variance of row y: the column sums of the row sums into a row buffer, then
 // box_variance over the row. Each is a loop over the row the compiler vectorises (summing the
 // column inside the pixel loop would leave it scalar).
-void box_column(const denoise::VariancePass& p, int y) {
+void box_column(const denoise::VariancePass& pass, int y) {
+  const denoise::VariancePass p = pass;  // (a local copy: the loop vectorises)
   const size_t w = size_t(p.width), row = size_t(y) * w;
   thread_local std::vector<float> columns;
   columns.resize(5 * w);
