@@ -2,8 +2,9 @@
 // as the gather radius, tens of pixels at 512x512, which the full-resolution a-trous filter's five
 // passes (a footprint of about 13 pixels' standard deviation) cannot flatten. The same passes over
 // a half-resolution image reach twice as far at a quarter of the cost. Direct light takes the same
-// path while its history is short (DenoiseSettings::half_direct_frames): with one frame of one
-// light sample its noise is as wide as the full-resolution passes reach.
+// path while its history is short (DenoiseSettings::half_direct_frames), or clipped every frame
+// while the world changes: with one frame of one light sample its noise is as wide as the
+// full-resolution passes reach.
 //
 // downsample_pixel builds each half-resolution texel from its 2x2 block: the surface of the
 // block's nearest reflecting pixel, and the light and variance of the block's pixels that lie on

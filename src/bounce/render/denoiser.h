@@ -38,9 +38,9 @@ struct DenoiseSettings {
   // filtering (direct_iterations_at_rest).
   int rest_atrous_frames = 32;
   // For this many frames after a reset (the first frame of a still or of a new view, when no
-  // pixel has history), direct light is filtered at half resolution, as indirect light is, with
-  // one a-trous pass fewer (0: never). One frame's light samples leave noise wider than the
-  // full-resolution passes reach.
+  // pixel has history), and while the world changes (the history clipped every frame), direct
+  // light is filtered at half resolution, as indirect light is, with one a-trous pass fewer (0:
+  // never). One frame's light samples leave noise wider than the full-resolution passes reach.
   int half_direct_frames = 4;
   // a-trous passes over indirect light at its resolution, for an image 512 pixels high; one
   // more per doubling of the height, one fewer per halving (indirect_iterations_for)
