@@ -284,6 +284,22 @@ TEST(Denoiser, HalfResolutionDirectLightWhileTheWorldChanges) {
     else
       EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
   }
+  // Without temporal reuse there is no history to clip: world changes are filtered as camera
+  // moves are.
+  Denoiser still_halved, still_full;
+  for (Denoiser* d : {&still_halved, &still_full}) d->settings().temporal = false;
+  still_halved.settings().half_direct_frames = 2;
+  still_full.settings().half_direct_frames = 0;
+  for (int k = 0; k < 5; ++k) {
+    const Image light = noisy(n, n, rng, 0.5f, [](int, int) { return 1.0f; });
+    const HistoryState state = k == 0 ? HistoryState::kReset : HistoryState::kWorldChanged;
+    const Image a = run(still_halved, g, state, light).direct;
+    const Image b = run(still_full, g, state, light).direct;
+    if (k >= 2)
+      EXPECT_EQ(a.pixels(), b.pixels()) << "frame " << k;
+    else
+      EXPECT_NE(a.pixels(), b.pixels()) << "frame " << k;
+  }
 }
 
 // Direct and indirect light at half resolution share the downsample, the passes they both take

@@ -275,8 +275,8 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   ConstRgbPlanes light_i = history.indirect_light();
   const bool spatial = s.spatial && s.atrous_iterations > 0;
   const float* depth = surface_.depth.data();
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, rest_frames_,
-                                                        history_frames_, temporal_settings.clip);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(
+      s, spatial, has_indirect, h, rest_frames_, history_frames_, temporal_settings.clipped());
   if (spatial) device_denoise::depth_slope(depth, w, h, depth_slope_.data());
   // (With the plan's half_variance, the half-resolution filter estimates it: filter_half.)
   if (spatial && !plan.half_variance) {

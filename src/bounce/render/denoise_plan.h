@@ -65,7 +65,7 @@ struct AtrousPlan {
 
 // `rest_frames`: consecutive frames at rest up to this one (0 when not at rest);
 // `history_frames`: frames since the last reset before this one (0 at a reset); `clipped`: this
-// frame's history was clipped to its neighbourhood (TemporalSettings::clip: the world changed).
+// frame's history was clipped to its neighbourhood (TemporalSettings::clipped: the world changed).
 inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_indirect, int height,
                               int rest_frames, int history_frames, bool clipped) {
   AtrousPlan p;

@@ -24,6 +24,9 @@ struct TemporalSettings {
   float clip_gamma = 1.0f;
   float depth_tolerance = 0.0f;
   float normal_tolerance = 0.0f;
+
+  // Whether this frame's history is clipped (there is one, and the world changed).
+  BOUNCE_HD bool clipped() const { return history && clip; }
 };
 
 struct TemporalPass {

@@ -796,8 +796,8 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   ConstRgbPlanes light_d = history.direct_light();
   ConstRgbPlanes light_i = history.indirect_light();
   const bool spatial = s.spatial && s.atrous_iterations > 0;
-  const denoise::AtrousPlan plan = denoise::atrous_plan(s, spatial, has_indirect, h, b.rest_frames,
-                                                        b.history_frames, temporal_settings.clip);
+  const denoise::AtrousPlan plan = denoise::atrous_plan(
+      s, spatial, has_indirect, h, b.rest_frames, b.history_frames, temporal_settings.clipped());
   b.half_variance = plan.half_variance;
   if (spatial) {
     ScopedStage stage(frame.times, "denoise/variance");
