@@ -663,7 +663,8 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
                   "fewer per doubling (0: never)");
   params_.add_int("half_direct_frames", &s.half_direct_frames, 0, 1 << 20,
                   "frames after a reset during which direct light is filtered at half "
-                  "resolution with one a-trous pass fewer (0: never)");
+                  "resolution with one a-trous pass fewer, as it is while the world changes "
+                  "(0: never)");
   params_.add_int("indirect_iterations", &s.indirect_iterations, 0, 8,
                   "a-trous passes over indirect light at 512 pixels of image height "
                   "(one more per doubling)");
