@@ -138,10 +138,7 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
     std::vector<int> tap_q(static_cast<size_t>(w));
     ReprojectedRow row;
     for (int c = 0; c < 10; ++c) row.v[c] = planes.data() + size_t(c) * size_t(w);
-    TapRow taps;
-    taps.q = tap_q.data();
-    for (int k = 0; k < 4; ++k) taps.w[k] = tap_planes.data() + size_t(k) * size_t(w);
-    for (int c = 0; c < 3; ++c) taps.normal[c] = tap_planes.data() + size_t(4 + c) * size_t(w);
+    const TapRow taps = TapRow::over(tap_q.data(), tap_planes.data(), size_t(w));
     int kept = 0, dropped = 0;
     for (int y = 0; y < h; ++y) {
       const size_t first = size_t(y) * size_t(w);

@@ -29,6 +29,15 @@ struct TapRow {
   float* w[4] = {};
   float* normal[3] = {};
 
+  // Over `q` (width entries) and `planes` (7 x width: the weights, then the normals).
+  static TapRow over(int* q, float* planes, size_t width) {
+    TapRow t;
+    t.q = q;
+    for (int k = 0; k < 4; ++k) t.w[k] = planes + size_t(k) * width;
+    for (int c = 0; c < 3; ++c) t.normal[c] = planes + size_t(4 + c) * width;
+    return t;
+  }
+
   BOUNCE_LANE_INLINE void store(const TemporalPass& p, int x, int y, size_t i) const {
     const BilinearTaps t = bilinear_taps(p, x, y, i);
     // (Written out: a loop over the planes keeps the row loop from vectorising.)

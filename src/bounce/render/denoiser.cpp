@@ -175,11 +175,8 @@ void reproject_row(const denoise::TemporalPass& pass, int y, const denoise::Repr
     thread_local std::vector<int> tap_q;
     tap_planes.resize(7 * size_t(p.width));
     tap_q.resize(size_t(p.width));
-    denoise::TapRow taps;
-    taps.q = tap_q.data();
-    for (int k = 0; k < 4; ++k) taps.w[k] = tap_planes.data() + size_t(k) * size_t(p.width);
-    for (int c = 0; c < 3; ++c)
-      taps.normal[c] = tap_planes.data() + size_t(4 + c) * size_t(p.width);
+    const denoise::TapRow taps =
+        denoise::TapRow::over(tap_q.data(), tap_planes.data(), size_t(p.width));
     BOUNCE_IVDEP
     for (int k = 0; k < p.width; ++k) taps.store(p, k, y, first + size_t(k));
     for (; x + 8 <= p.width; x += 8) denoise::reproject_eight(p, taps, x, y, row);
