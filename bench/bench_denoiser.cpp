@@ -114,13 +114,16 @@ double relative_rms(const Image& out, const Image& clean) {
 }
 
 // Args: a-trous iterations, history state (1: kCameraMoved in steady state, 0: kReset, 2: kRest;
-// the errors mean nothing at rest, where the frames still move), worker threads, 1 with indirect
-// light or 0 for direct light alone, and the resolution divisor indirect light is filtered at.
-// The iterations count for direct and indirect light alike.
+// the errors mean nothing at rest, where the frames still move; 3: kWorldChanged, the camera
+// moving and the world said to change, so the history is clipped to each frame's neighbourhood,
+// as with a flashlight carried through a level), worker threads, 1 with indirect light or 0 for
+// direct light alone, and the resolution divisor indirect light is filtered at. The iterations
+// count for direct and indirect light alike.
 void BM_Denoiser(benchmark::State& state) {
   const int iterations = int(state.range(0));
   const HistoryState measured = state.range(1) == 0   ? HistoryState::kReset
                                 : state.range(1) == 1 ? HistoryState::kCameraMoved
+                                : state.range(1) == 3 ? HistoryState::kWorldChanged
                                                       : HistoryState::kRest;
   ThreadLimit limit(int(state.range(2)));
   const bool with_indirect = state.range(3) != 0;
@@ -177,6 +180,7 @@ BENCHMARK(BM_Denoiser)
     ->Args({2, 1, 2, 0, 2})
     ->Args({4, 1, 2, 0, 2})
     ->Args({5, 1, 1, 1, 2})
+    ->Args({5, 3, 1, 1, 2})
     ->Args({0, 1, 1, 1, 2})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
