@@ -92,8 +92,17 @@ void compare_sequence(bool with_indirect, bool accumulated, int indirect_resolut
   DeviceDenoiserHost gpu;
   Pcg32 rng(3);
   const Camera cameras[2] = {scene.camera, moved_camera(scene.camera)};
-  const HistoryState states[] = {HistoryState::kReset, HistoryState::kRest, HistoryState::kRest,
-                                 HistoryState::kCameraMoved, HistoryState::kWorldChanged};
+  const HistoryState states[] = {HistoryState::kReset,        HistoryState::kRest,
+                                 HistoryState::kRest,         HistoryState::kCameraMoved,
+                                 HistoryState::kWorldChanged, HistoryState::kWorldChanged};
+  // The last world change moved a spot light only: direct light's history is clipped in its
+  // cone (the box's left half, seen from the camera), kept elsewhere.
+  LightChangeRegion spot = LightChangeRegion::none();
+  spot.cones = 1;
+  spot.apex[0] = scene.camera.position;
+  const vec3 forward = scene.camera.look_at - scene.camera.position;
+  spot.axis[0] = glm::normalize(forward - 0.3f * glm::length(forward) * vec3(1.0f, 0.0f, 0.0f));
+  spot.cos_outer[0] = std::cos(0.3f);
   CameraRays previous = CameraRays::from(cameras[0], kWidth, kHeight);
   for (int f = 0; f < int(std::size(states)); ++f) {
     const HistoryState state = states[f];
@@ -111,8 +120,11 @@ void compare_sequence(bool with_indirect, bool accumulated, int indirect_resolut
     Image cpu_direct = raw_direct, cpu_indirect = raw_indirect;
     Image gpu_direct = raw_direct, gpu_indirect = raw_indirect;
     StageTimes times;
-    cpu.run({g, state, accumulated, times}, cpu_direct, with_indirect ? &cpu_indirect : nullptr);
-    gpu.run(settings, g, state, accumulated, gpu_direct, with_indirect ? &gpu_indirect : nullptr);
+    const LightChangeRegion region = f == 5 ? spot : LightChangeRegion::all();
+    cpu.run({g, state, accumulated, times, true, region}, cpu_direct,
+            with_indirect ? &cpu_indirect : nullptr);
+    gpu.run(settings, g, state, accumulated, gpu_direct, with_indirect ? &gpu_indirect : nullptr,
+            region);
     expect_same(gpu_direct, cpu_direct, raw_direct, "direct", f);
     if (with_indirect) expect_same(gpu_indirect, cpu_indirect, raw_indirect, "indirect", f);
   }

@@ -807,6 +807,45 @@ TEST(Denoiser, WorldChangesClipTheHistoryToTheNeighbourhood) {
   }
 }
 
+// When nothing but a spot light changed, direct light's history is clipped only in the region
+// its cones reach (LightChangeRegion), and kept elsewhere: a flashlight's move leaves the still
+// lights' averages alone. Indirect light's history is clipped everywhere (bounced light reaches
+// beyond the cone).
+TEST(Denoiser, ASpotLightsChangeClipsDirectLightOnlyInItsCone) {
+  const int n = 12;
+  const GBuffer g = plane(n, n);  // pixel (x, y) sees the point (x, y, 1)
+  // A cone from (6, 5.5, 1) along -x, 80 degrees wide: columns 0 to 5 are inside, 6 to 11 not.
+  LightChangeRegion cone = LightChangeRegion::none();
+  cone.cones = 1;
+  cone.apex[0] = vec3(6.0f, 5.5f, 1.0f);
+  cone.axis[0] = vec3(-1.0f, 0.0f, 0.0f);
+  cone.cos_outer[0] = std::cos(glm::radians(80.0f));
+  const Image old_light = image_of(n, n, [](int, int) { return vec3(100.0f); });
+  Pcg32 rng(19);
+  const Image light = image_of(n, n, [&](int, int) {
+    return vec3(1.0f) + 0.2f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+  });
+  Denoiser d;
+  d.settings().spatial = false;
+  StageTimes times;
+  Image direct = old_light, indirect = old_light;
+  d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
+  direct = light;
+  indirect = light;
+  d.run({g, HistoryState::kWorldChanged, false, times, true, cone}, direct, &indirect);
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const std::string where = std::to_string(x) + "," + std::to_string(y);
+      EXPECT_EQ(cone.contains(g.position[g.view().index(x, y)]), x < 6) << where;
+      if (x < 6)
+        EXPECT_LT(direct.at(x, y).x, 1.5f) << where;
+      else
+        expect_near_rel(direct.at(x, y), 0.5f * (vec3(100.0f) + light.at(x, y)), 1e-4f, where);
+      EXPECT_LT(indirect.at(x, y).x, 1.5f) << where;
+    }
+  }
+}
+
 // Background and lights seen directly (no surface) pass through untouched while anything moves;
 // at rest they average their frames like every pixel (a jittered edge pixel sees a surface in
 // some frames and none in others, and its average must count both).

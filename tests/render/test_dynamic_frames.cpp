@@ -137,5 +137,73 @@ TEST(DynamicFrames, DirectLightAveragesAtRestAndRestartsOnAChange) {
   EXPECT_LT(err_avg, 0.5 * err_one);
 }
 
+// A spot light turning to and fro on the Cornell box's left wall under a still camera: the
+// ceiling light's direct light everywhere else keeps averaging frame after frame as it does at
+// rest, since the change of lights reaches only the spot's cones (light_change_region). Clipping
+// every pixel's history to its noisy neighbourhood, as any other change of the world does, would
+// keep that light about as noisy as a few frames' average.
+TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
+  Scene scene = make_cornell();
+  const size_t spot = scene.lights.size();
+  const vec3 wall(-1.0f, 0.0f, 0.0f);
+  // Above the tall block, aimed at the wall at x = 0: no surface with x > 0.2 is in its cone.
+  scene.lights.push_back(Light::spot(vec3(0.278f, 0.45f, 0.28f), wall, vec3(0.2f), 8.0f, 12.0f));
+  scene.derive();
+  FrameSettings settings = small_frame();
+  settings.light_samples = 1;
+  settings.accumulate = true;
+  settings.denoise = true;
+  const int frames = 24;
+  // Mean absolute luminance error of `image` against `reference` over the pixels whose surface
+  // lies at x > 0.2, which the spot never lights.
+  const auto error_away = [&](const Image& image, const Image& reference, const GBuffer& g) {
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < g.size(); ++i) {
+      if (!g.hit(i) || g.position[i].x <= 0.2f) continue;
+      sum += std::abs(luminance(image.pixels()[i]) - luminance(reference.pixels()[i]));
+      ++count;
+    }
+    EXPECT_GT(count, 300);
+    return sum / std::max(count, 1);
+  };
+  const auto last_frame = [&](bool turning) {
+    scene.lights[spot].direction = wall;
+    auto tracer = make_embree_tracer(scene);
+    Renderer renderer(scene, *tracer, make_technique("direct"));
+    renderer.denoiser().settings().spatial = false;  // the history alone
+    for (int k = 0; k + 1 < frames; ++k) {
+      renderer.render(scene.camera, settings);
+      if (turning) {
+        const float turn = glm::radians(k % 2 == 0 ? 3.0f : -3.0f);
+        scene.lights[spot].direction =
+            vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(wall, 0.0f));
+        renderer.scene_changed(SceneChange{{}, true, false});
+      }
+    }
+    const Frame& f = renderer.render(scene.camera, settings);
+    return std::pair<Image, GBuffer>(f.direct, f.gbuffer);
+  };
+  const auto [rest, g] = last_frame(false);
+  const auto [turning, g_turning] = last_frame(true);
+  // Pixel centres, as the frames above sample them (render_image's frames are jittered).
+  scene.lights[spot].direction = wall;
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_technique("direct"));
+  FrameSettings one = settings;
+  one.accumulate = one.denoise = false;
+  const Image single = renderer.render(scene.camera, one).direct;
+  FrameSettings many = one;
+  many.light_samples = 256;
+  many.accumulate = true;
+  for (int k = 0; k < 7; ++k) renderer.render(scene.camera, many);
+  const Image reference = renderer.render(scene.camera, many).direct;
+  const double e_rest = error_away(rest, reference, g);
+  const double e_turning = error_away(turning, reference, g_turning);
+  const double e_single = error_away(single, reference, g);
+  EXPECT_LT(e_turning, 1.2 * e_rest) << e_rest << " " << e_single;
+  EXPECT_LT(e_turning, 0.25 * e_single) << e_rest << " " << e_single;
+}
+
 }  // namespace
 }  // namespace bounce

@@ -178,8 +178,9 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   if (denoise) {
     // Debug views (FrameSettings::view) are the CPU's only: the GPU shows the denoised image.
     events_.begin("denoise");
-    denoiser_.run(in.denoiser.settings(), DeviceDenoiseFrame{g, in.history, indirect},
-                  direct_.data(), indirect ? indirect_.data() : nullptr);
+    denoiser_.run(in.denoiser.settings(),
+                  DeviceDenoiseFrame{g, in.history, indirect, in.direct_region}, direct_.data(),
+                  indirect ? indirect_.data() : nullptr);
     events_.end();
   }
 

@@ -40,7 +40,7 @@ DeviceDenoiserHost::DeviceDenoiserHost() {
 DeviceDenoiserHost::~DeviceDenoiserHost() = default;
 
 void DeviceDenoiserHost::run(const DenoiseSettings&, const GBuffer&, HistoryState, bool, Image&,
-                             Image*) {
+                             Image*, const LightChangeRegion&) {
   fail("device denoiser: {}", kNotBuilt);
 }
 

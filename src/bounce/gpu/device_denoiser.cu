@@ -255,6 +255,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.prev_width = prev_width;
     temporal.prev_height = prev_height;
     temporal.s = temporal_settings;
+    temporal.direct_region = frame.direct_region;
     const bool update_rest = rest || state == HistoryState::kReset;
     temporal.rest = {rest_factor_.view(), rest_emission_.view()};
     uint32_t* row_short = row_short_.data();

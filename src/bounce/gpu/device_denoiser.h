@@ -17,6 +17,7 @@ struct DeviceDenoiseFrame {
   ConstGBufferView g;  // device pointers, this frame's G-buffer with motion
   HistoryState state;
   bool indirect_accumulated;
+  LightChangeRegion direct_region = LightChangeRegion::all();  // as DenoiseFrame's
 };
 
 class DeviceDenoiser {

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "bounce/render/denoise_kernels.h"
+#include "bounce/render/light_change_region.h"
 
 namespace bounce::denoise {
 
@@ -51,6 +52,10 @@ struct TemporalPass {
   int prev_width = 0;
   int prev_height = 0;
   TemporalSettings s;
+  // Where direct light's history is clipped when s.clip: where the lights' change reached (every
+  // pixel unless nothing but spot lights changed). Indirect light's is clipped everywhere: light
+  // a moved spot sends on reaches beyond its cone.
+  LightChangeRegion direct_region;
 };
 
 // This frame's light at pixel i (which has a surface), demodulated; emission set apart.
@@ -213,7 +218,8 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
   Reprojected r = reproject(p, x, y, i);
   if (r.kept && p.s.clip) {
     const ColorBoxes boxes = neighbourhood(p, x, y);
-    clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
+    if (p.direct_region.contains(p.g.position[i]))
+      clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
     if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
   }
   return r;

@@ -136,8 +136,36 @@ BOUNCE_LANE_INLINE void clip_entry(float* const* c, int x, const denoise::ColorB
   c[3][x] = h.w;
 }
 
+// Clips the history texel at entry x of four row planes to `box` where `clip` is set.
+BOUNCE_LANE_INLINE void clip_entry_where(float* const* c, int x, const denoise::ColorBox& box,
+                                         float gamma, bool clip) {
+  const vec4 h0(c[0][x], c[1][x], c[2][x], c[3][x]);
+  vec4 h = h0;
+  denoise::clip_history(box, gamma, h);
+  h = pick(clip, h, h0);
+  c[0][x] = h.x;
+  c[1][x] = h.y;
+  c[2][x] = h.z;
+  c[3][x] = h.w;
+}
+
+// Whether each pixel of row y lies in the region where direct light's history is clipped
+// (TemporalPass::direct_region), cone by cone over the row.
+// (Locals and a float mask: through a byte pointer the loop reloads everything and stays scalar.)
+void direct_region_row(const LightChangeRegion& r, const vec3* position, int width, float* inside) {
+  for (int x = 0; x < width; ++x) inside[x] = 0.0f;
+  for (int k = 0; k < r.cones; ++k) {
+    const vec3 apex = r.apex[k], axis = r.axis[k];
+    const float cos_half = r.cos_outer[k];
+    BOUNCE_IVDEP
+    for (int x = 0; x < width; ++x)
+      inside[x] = pick(in_cone(position[x], apex, axis, cos_half), 1.0f, inside[x]);
+  }
+}
+
 // Clips the row's reprojected history to this frame's neighbourhoods (the world changed), from
-// demodulate_pass's planes. Every pixel is clipped: a history not kept is not read.
+// demodulate_pass's planes: indirect light everywhere, direct light in the pass's direct_region.
+// A history not kept is clipped too: it is not read.
 template <bool kIndirect>
 void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, int y,
               const denoise::ReprojectedRow& row) {
@@ -152,10 +180,27 @@ void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, i
   float* v[8];
   for (int c = 0; c < 8; ++c) v[c] = row.v[c];
   const float gamma = p.s.clip_gamma;
+  if (p.direct_region.everywhere) {
+    auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
+      const denoise::ColorBoxes boxes = denoise::neighbourhood_planes<kIndirect, kChecked>(
+          demodulated, rows, row_mask, x, p.width);
+      clip_entry(v, x, boxes.direct, gamma);
+      if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma);
+    };
+    row_loop(
+        p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+    return;
+  }
+  thread_local std::vector<float> inside_row;
+  inside_row.resize(size_t(p.width));
+  const float* inside = inside_row.data();
+  direct_region_row(p.direct_region, p.g.position + size_t(y) * size_t(p.width), p.width,
+                    inside_row.data());
   auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
     const denoise::ColorBoxes boxes =
         denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
-    clip_entry(v, x, boxes.direct, gamma);
+    clip_entry_where(v, x, boxes.direct, gamma, inside[x] != 0.0f);
     if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma);
   };
   row_loop(
@@ -767,6 +812,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.prev_width = prev_width;
     temporal.prev_height = prev_height;
     temporal.s = temporal_settings;
+    temporal.direct_region = frame.direct_region;
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     if (temporal_settings.history && temporal_settings.clip) {

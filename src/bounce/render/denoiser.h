@@ -25,6 +25,7 @@
 #include "bounce/core/image.h"
 #include "bounce/core/timer.h"
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/light_change_region.h"
 #include "bounce/render/params.h"
 
 namespace bounce {
@@ -113,6 +114,9 @@ struct DenoiseFrame {
   // Whether a later frame may continue this one's history. Without (every frame a reset:
   // FrameSettings::accumulate off) a reset does not start the rest averages no frame will read.
   bool history_continues = true;
+  // Where direct light's history is clipped when the world changed (LightChangeRegion): the
+  // Renderer narrows it to the cones of the spot lights that moved when nothing else changed.
+  LightChangeRegion direct_region = LightChangeRegion::all();
 };
 
 class Denoiser {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "bounce/core/math.h"
+#include "bounce/render/light_change_region.h"
 #include "bounce/render/technique.h"
 #include "bounce/scene/camera.h"
 #include "bounce/scene/scene.h"
@@ -35,6 +36,7 @@ struct DeviceFrameInput {
   vec2 subpixel;                    // primary-ray position in the pixel
   bool rest;                        // accumulating and nothing changed
   HistoryState history;             // for the denoiser
+  LightChangeRegion direct_region;  // where it clips direct light's history (DenoiseFrame)
   const Denoiser& denoiser;         // its settings
   uint32_t frame_index;
 };

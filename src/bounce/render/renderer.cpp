@@ -110,6 +110,11 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   last_parameters_ = std::move(parameters);
   last_denoise_ = denoiser_.settings();
   const SceneChange& change = f.change;
+  // Where the change reached direct light, for the denoiser's clip: when nothing but lights
+  // changed, only the cones of the spots that moved (a carried flashlight).
+  std::vector<LightRecord> lights(scene_.lights.begin(), scene_.lights.end());
+  const LightChangeRegion direct_region = light_change_region(change, last_lights_, lights);
+  last_lights_ = std::move(lights);
   const bool rest = settings.accumulate && !change.any();
   rest_frames_ = rest ? rest_frames_ + 1 : 1;
   // The denoiser's temporal part takes over the averaging at rest.
@@ -153,7 +158,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
           scene_.source);
     device_->render(
         DeviceFrameInput{scene_, scene_data_, lights_, *technique_, settings, change, rays,
-                         previous, subpixel, rest, history, denoiser_, frame_index_},
+                         previous, subpixel, rest, history, direct_region, denoiser_, frame_index_},
         f);
     ++frame_index_;
     return f;
@@ -225,9 +230,12 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "denoise");
     denoiser_.keep_raw(settings.view == DenoiseView::kRaw);
     denoiser_.keep_motion(settings.view == DenoiseView::kMotion);
-    const DenoiseFrame frame{f.gbuffer, history,
+    const DenoiseFrame frame{f.gbuffer,
+                             history,
                              technique_->indirect_history() == IndirectHistory::kAccumulated,
-                             f.times, settings.accumulate};
+                             f.times,
+                             settings.accumulate,
+                             direct_region};
     denoiser_.run(frame, f.direct, indirect ? &f.indirect : nullptr);
   }
   {

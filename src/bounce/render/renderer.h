@@ -16,6 +16,7 @@
 #include "bounce/render/device_pipeline.h"
 #include "bounce/render/direct_kernel.h"
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/light_change_region.h"
 #include "bounce/render/light_picker.h"
 #include "bounce/render/primary_raster.h"
 #include "bounce/render/technique.h"
@@ -142,6 +143,7 @@ class Renderer {
   CameraRays last_rays_{};  // the last frame's camera for its size: motion vectors start there
   int last_width_ = 0, last_height_ = 0;
   DenoiseSettings last_denoise_;
+  std::vector<LightRecord> last_lights_;
   int rest_frames_ = 0;  // frames since the last change (Frame::frames_averaged)
   std::vector<std::string> last_parameters_;
   RunningAverage direct_average_, indirect_average_;

@@ -1,0 +1,33 @@
+#include "bounce/render/light_change_region.h"
+
+namespace bounce {
+
+LightChangeRegion light_change_region(std::span<const LightRecord> before,
+                                      std::span<const LightRecord> after) {
+  if (before.size() != after.size()) return LightChangeRegion::all();
+  LightChangeRegion r = LightChangeRegion::none();
+  for (size_t k = 0; k < before.size(); ++k) {
+    const LightRecord &a = before[k], &b = after[k];
+    if (a == b) continue;
+    if (a.type != LightType::kSpot || b.type != LightType::kSpot ||
+        r.cones + 2 > LightChangeRegion::kMaxCones)
+      return LightChangeRegion::all();
+    for (const LightRecord* l : {&a, &b}) {
+      r.apex[r.cones] = l->position;
+      r.axis[r.cones] = glm::normalize(l->direction);
+      r.cos_outer[r.cones] = l->cos_outer;
+      ++r.cones;
+    }
+  }
+  return r;
+}
+
+LightChangeRegion light_change_region(const SceneChange& change,
+                                      std::span<const LightRecord> before,
+                                      std::span<const LightRecord> after) {
+  const bool lights_only = change.lights && !change.everything && !change.geometry() &&
+                           !change.materials && !change.parameters;
+  return lights_only ? light_change_region(before, after) : LightChangeRegion::all();
+}
+
+}  // namespace bounce

@@ -1,0 +1,112 @@
+// Where a change of lights reaches direct light (render/light_change_region.h): the cones of the
+// spot lights that changed, both poses, checked against the spots' own falloff at random points;
+// everywhere for any other kind of change.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "bounce/core/rng.h"
+#include "bounce/render/light_change_region.h"
+#include "bounce/scene/light.h"
+
+namespace bounce {
+namespace {
+
+std::vector<LightRecord> records(std::initializer_list<Light> lights) {
+  return std::vector<LightRecord>(lights.begin(), lights.end());
+}
+
+const Light kStill = Light::point(vec3(0.0f, 3.0f, 0.0f), vec3(5.0f));
+const Light kSpot =
+    Light::spot(vec3(0.0f, 1.0f, 0.0f), vec3(1.0f, -0.2f, 0.0f), vec3(20.0f), 10.0f, 20.0f);
+
+Light turned(const Light& spot, vec3 direction) {
+  Light l = spot;
+  l.direction = glm::normalize(direction);
+  return l;
+}
+
+TEST(LightChangeRegion, NothingChangedIsNowhere) {
+  const auto lights = records({kStill, kSpot});
+  const LightChangeRegion r = light_change_region(lights, lights);
+  EXPECT_FALSE(r.everywhere);
+  EXPECT_EQ(r.cones, 0);
+  EXPECT_FALSE(r.contains(vec3(0.5f, 0.9f, 0.0f)));
+}
+
+// Every point either pose of a turned spot lights is in the region, and a point neither lights
+// (the still light's alone) is not: the region is no wider than the two cones.
+TEST(LightChangeRegion, ATurnedSpotReachesItsOldAndNewCones) {
+  const Light moved = turned(kSpot, vec3(0.2f, -0.2f, 1.0f));
+  const auto before = records({kStill, kSpot}), after = records({kStill, moved});
+  const LightChangeRegion r = light_change_region(before, after);
+  ASSERT_FALSE(r.everywhere);
+  ASSERT_EQ(r.cones, 2);
+  Pcg32 rng(5);
+  int lit = 0, unlit = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const vec3 p = vec3(rng.next_float(), rng.next_float(), rng.next_float()) * 8.0f - 4.0f;
+    const vec3 from_old = glm::normalize(p - kSpot.position);
+    const vec3 from_new = glm::normalize(p - moved.position);
+    const bool reached =
+        spot_falloff(kSpot, from_old) > 0.0f || spot_falloff(moved, from_new) > 0.0f;
+    // (Points on a cone's boundary, where the falloff is 0 and the test may say inside, are
+    // measure zero.)
+    EXPECT_EQ(r.contains(p), reached) << p.x << "," << p.y << "," << p.z;
+    (reached ? lit : unlit) += 1;
+  }
+  EXPECT_GT(lit, 200);
+  EXPECT_GT(unlit, 10000);
+}
+
+TEST(LightChangeRegion, ABrighterSpotReachesItsCone) {
+  Light brighter = kSpot;
+  brighter.intensity *= 2.0f;
+  const LightChangeRegion r =
+      light_change_region(records({kStill, kSpot}), records({kStill, brighter}));
+  ASSERT_FALSE(r.everywhere);
+  EXPECT_TRUE(r.contains(kSpot.position + 2.0f * kSpot.direction));
+  EXPECT_FALSE(r.contains(kSpot.position - 2.0f * kSpot.direction));
+}
+
+// A point, directional, sphere or environment light lights everything it reaches: no cone
+// bounds its change. So do a light added or removed and more changed spots than the region holds.
+TEST(LightChangeRegion, OtherChangesReachEverywhere) {
+  Light moved_point = kStill;
+  moved_point.position.x += 0.1f;
+  EXPECT_TRUE(
+      light_change_region(records({kStill, kSpot}), records({moved_point, kSpot})).everywhere);
+  const Light sun = Light::directional(vec3(0.0f, -1.0f, 0.0f), vec3(1.0f));
+  Light turned_sun = sun;
+  turned_sun.direction = glm::normalize(vec3(0.1f, -1.0f, 0.0f));
+  EXPECT_TRUE(light_change_region(records({sun}), records({turned_sun})).everywhere);
+  // A spot that became a point light.
+  const Light bulb = Light::point(kSpot.position, kSpot.intensity);
+  EXPECT_TRUE(light_change_region(records({kSpot}), records({bulb})).everywhere);
+  EXPECT_TRUE(light_change_region(records({kStill}), records({kStill, kSpot})).everywhere);
+  const Light t = turned(kSpot, vec3(0.0f, -1.0f, 1.0f));
+  EXPECT_FALSE(light_change_region(records({kSpot, kSpot}), records({t, t})).everywhere);
+  EXPECT_TRUE(light_change_region(records({kSpot, kSpot, kSpot}), records({t, t, t})).everywhere);
+}
+
+// Only a change of lights alone is narrowed: moved meshes, materials, parameters and a new scene
+// reach everywhere whatever the lights did; a camera move beside it does not widen it.
+TEST(LightChangeRegion, OnlyLightChangesAreNarrowed) {
+  const auto before = records({kStill, kSpot});
+  const auto after = records({kStill, turned(kSpot, vec3(0.0f, -1.0f, 1.0f))});
+  SceneChange lights;
+  lights.lights = true;
+  lights.camera = true;
+  EXPECT_FALSE(light_change_region(lights, before, after).everywhere);
+  SceneChange meshes = lights;
+  meshes.moved_meshes = {0};
+  SceneChange materials = lights;
+  materials.materials = true;
+  SceneChange parameters = lights;
+  parameters.parameters = true;
+  for (const SceneChange& c : {meshes, materials, parameters, SceneChange::all()})
+    EXPECT_TRUE(light_change_region(c, before, after).everywhere);
+}
+
+}  // namespace
+}  // namespace bounce
