@@ -50,7 +50,7 @@ TEST(PixelKernels, SphereLightHitShowsItsRadianceWithoutASurface) {
   Hit hit;
   hit.t = 4.0f;
   hit.light = 0;
-  gbuffer_pixel(scene, forward, ray, hit, 0, g.view());
+  gbuffer_pixel(scene, forward, 0.001f, ray, hit, 0, g.view());
   EXPECT_FALSE(g.hit(0));
   EXPECT_EQ(g.mesh[0], kNoPrimitive);
   EXPECT_EQ(g.emission[0], vec3(7.0f, 8.0f, 9.0f));

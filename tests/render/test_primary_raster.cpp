@@ -129,7 +129,7 @@ size_t expect_runs_equal_the_kernel(const Scene& scene, int w, int h) {
       if (!TriangleFromOrigin::make(t.p0, t.p1, t.p2, camera.origin)
                .intersect(ray.direction, ray.tmin, ray.tmax, hit.t, hit.barycentric))
         continue;  // traced
-      gbuffer_triangle_pixel(view, camera.forward, ray, hit, t,
+      gbuffer_triangle_pixel(view, camera.forward, camera.pixel_spread(), ray, hit, t,
                              view.triangle_id(r.mesh, r.triangle), i, k);
       ++compared;
       const float d = kernel.depth[i];

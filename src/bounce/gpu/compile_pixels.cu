@@ -15,7 +15,8 @@ __global__ void check_gbuffer(SceneView scene, TraceView trace, CameraRays camer
   const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
   if (x >= g.width || y >= g.height) return;
   const Ray ray{camera.origin, 0.0f, camera.direction(float(x) + 0.5f, float(y) + 0.5f)};
-  gbuffer_pixel(scene, camera.forward, ray, trace.intersect(ray), g.index(x, y), g);
+  gbuffer_pixel(scene, camera.forward, camera.pixel_spread(), ray, trace.intersect(ray),
+                g.index(x, y), g);
 }
 
 __global__ void check_motion(SceneView scene, CameraRays camera, CameraRays previous,

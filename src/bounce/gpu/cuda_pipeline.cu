@@ -136,7 +136,7 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
     ray.origin = rays.origin;
     ray.direction = rays.direction(float(x) + subpixel.x, float(y) + subpixel.y);
     ray.tmin = 0.0f;
-    gbuffer_pixel(sv, rays.forward, ray, tv.intersect(ray), g.index(x, y), g);
+    gbuffer_pixel(sv, rays.forward, rays.pixel_spread(), ray, tv.intersect(ray), g.index(x, y), g);
   });
   launch(n, [=] __device__(uint32_t i) { g.motion[i] = motion_pixel(sv, rays, previous, g, i); });
   events_.end();

@@ -71,13 +71,13 @@ struct Candidate {
 // writing nothing, where the ray must be traced (it misses its candidate, which lies within the
 // raster's margin, or the candidate has cut-outs).
 bool pixel_from_raster(const SceneView& scene, const TraceView& trace, const PrimaryRaster& raster,
-                       vec3 forward, size_t i, const Ray& ray, Candidate& candidate,
+                       vec3 forward, float spread, size_t i, const Ray& ray, Candidate& candidate,
                        const GBufferView& g) {
   Hit hit;
   const uint32_t c = raster.candidates()[i];
   if (c == PrimaryRaster::kNone) {
     closest_sphere(trace.spheres, trace.sphere_count, ray, hit);
-    gbuffer_pixel(scene, forward, ray, hit, i, g);
+    gbuffer_pixel(scene, forward, spread, ray, hit, i, g);
     return true;
   }
   if (c != candidate.index) candidate.load(scene, raster, c, ray.origin);
@@ -88,9 +88,9 @@ bool pixel_from_raster(const SceneView& scene, const TraceView& trace, const Pri
   hit.triangle = candidate.triangle;
   closest_sphere(trace.spheres, trace.sphere_count, ray, hit);
   if (hit.valid())
-    gbuffer_triangle_pixel(scene, forward, ray, hit, candidate.surface, candidate.id, i, g);
+    gbuffer_triangle_pixel(scene, forward, spread, ray, hit, candidate.surface, candidate.id, i, g);
   else
-    gbuffer_pixel(scene, forward, ray, hit, i, g);
+    gbuffer_pixel(scene, forward, spread, ray, hit, i, g);
   return true;
 }
 
@@ -109,7 +109,8 @@ BOUNCE_LANE_INLINE bool candidate_pixel(const SceneView& scene, const CameraRays
   hit.mesh = c.mesh;
   hit.triangle = c.triangle;
   const bool meets = c.test.meets(ray.direction, ray.tmin, ray.tmax, hit.t, hit.barycentric);
-  gbuffer_triangle_pixel<kForm>(scene, camera.forward, ray, hit, c.surface, c.id, i0 + k, g);
+  gbuffer_triangle_pixel<kForm>(scene, camera.forward, camera.pixel_spread(), ray, hit, c.surface,
+                                c.id, i0 + k, g);
   return !meets;
 }
 
@@ -211,7 +212,8 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
                          true);
         n = 0;
         for (int x = run; x < end; ++x, ++n)
-          gbuffer_pixel(scene, camera.forward, rays[n], hits[n], g.index(x, y), g);
+          gbuffer_pixel(scene, camera.forward, camera.pixel_spread(), rays[n], hits[n],
+                        g.index(x, y), g);
         continue;
       }
       // The pixels the raster stands for written at once, the rays it cannot stand for traced
@@ -238,8 +240,8 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
           }
         }
         for (; k < end; ++k)
-          if (!pixel_from_raster(scene, trace, *raster, camera.forward, i0 + k, rays[k], candidate,
-                                 g)) {
+          if (!pixel_from_raster(scene, trace, *raster, camera.forward, camera.pixel_spread(),
+                                 i0 + k, rays[k], candidate, g)) {
             traced[m] = rays[k];
             traced_index[m++] = uint32_t(k);
           }
@@ -248,7 +250,7 @@ void build_gbuffer_block(const SceneView& scene, const Tracer& tracer, const Cam
       tracer.intersect(std::span<const Ray>(traced.data(), m),
                        std::span<Hit>(traced_hits.data(), m), true);
       for (size_t k = 0; k < m; ++k)
-        gbuffer_pixel(scene, camera.forward, traced[k], traced_hits[k],
+        gbuffer_pixel(scene, camera.forward, camera.pixel_spread(), traced[k], traced_hits[k],
                       g.index(run + int(traced_index[k]), y), g);
     }
 }

@@ -18,13 +18,17 @@ namespace bounce {
 // Writes pixel i for a primary ray along unit `ray.direction` that met triangle `hit`
 // (hit.valid()), whose surface_triangle is `t` and global id `id`: what gbuffer_pixel writes there.
 // The raster's runs load `t` once for the pixels that see the same triangle; kForm: what the
-// caller knows of it (SurfaceForm).
+// caller knows of it (SurfaceForm). `spread`: the angle a pixel spans (CameraRays::pixel_spread);
+// textures are filtered over the pixel's footprint (surface_on's kFiltered), as the reference's
+// many samples per pixel average them. 0: read at the point.
 template <SurfaceForm kForm = SurfaceForm{}>
 BOUNCE_HD BOUNCE_LANE_INLINE void gbuffer_triangle_pixel(const SceneView& scene, vec3 forward,
-                                                         const Ray& ray, const Hit& hit,
-                                                         const SurfaceTriangle& t, uint32_t id,
-                                                         size_t i, const GBufferView& g) {
-  g.store(i, surface_on<false, kForm>(t, hit.barycentric, ray.direction, scene.textures));
+                                                         float spread, const Ray& ray,
+                                                         const Hit& hit, const SurfaceTriangle& t,
+                                                         uint32_t id, size_t i,
+                                                         const GBufferView& g) {
+  g.store(i, surface_on<false, kForm, true>(t, hit.barycentric, ray.direction, scene.textures,
+                                            hit.t * spread));
   g.primitive[i] = id;
   g.mesh[i] = hit.mesh;
   g.barycentric[i] = hit.barycentric;
@@ -35,8 +39,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE void gbuffer_triangle_pixel(const SceneView& scene,
 // sphere light, or nothing). `forward` is the camera's viewing axis: depth is measured along it.
 // Every field but the motion, which the motion pass (motion_kernel.h) writes for every pixel
 // after this one: written here too, it was 8 of the 104 bytes a pixel stores for nothing.
-BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const Ray& ray,
-                                    const Hit& hit, size_t i, const GBufferView& g) {
+BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, float spread,
+                                    const Ray& ray, const Hit& hit, size_t i,
+                                    const GBufferView& g) {
   if (!hit.valid()) {
     g.primitive[i] = g.mesh[i] = kNoPrimitive;
     g.barycentric[i] = vec2(0.0f);
@@ -54,7 +59,8 @@ BOUNCE_HD inline void gbuffer_pixel(const SceneView& scene, vec3 forward, const 
     g.store(i, none);
     return;
   }
-  gbuffer_triangle_pixel(scene, forward, ray, hit, surface_triangle(scene, hit.mesh, hit.triangle),
+  gbuffer_triangle_pixel(scene, forward, spread, ray, hit,
+                         surface_triangle(scene, hit.mesh, hit.triangle),
                          scene.triangle_id(hit.mesh, hit.triangle), i, g);
 }
 

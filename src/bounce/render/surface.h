@@ -21,6 +21,9 @@ struct SurfaceTriangle {
   vec3 n0, n1, n2;     // meaningful with has_normals
   vec2 uv0, uv1, uv2;  // meaningful with has_uvs
   vec3 face;
+  // Texture coordinates per metre across the triangle (the square root of its areas' ratio in
+  // texture space and in space; meaningful with has_uvs): a footprint's width in them.
+  float uv_per_metre = 0.0f;
   const MaterialRecord* material = nullptr;
   bool has_normals = false;
   bool has_uvs = false;
@@ -47,6 +50,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceTriangle surface_triangle(const MeshView& me
     t.uv0 = mesh.uvs[tri.x];
     t.uv1 = mesh.uvs[tri.y];
     t.uv2 = mesh.uvs[tri.z];
+    const vec2 d1 = t.uv1 - t.uv0, d2 = t.uv2 - t.uv0;
+    const float uv_area = std::fabs(d1.x * d2.y - d1.y * d2.x);
+    const float area = glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
+    t.uv_per_metre = area > 0.0f ? std::sqrt(uv_area / area) : 0.0f;
   }
   return t;
 }
@@ -87,11 +94,17 @@ struct SurfaceForm {
 
 // The surface at barycentric (b1, b2) of triangle t for a ray travelling along `direction`;
 // `textures[i].sample(uv)` reads the scene's textures, or with kMeanTextures their means
-// (material_at; no normal map then); kForm: what the caller knows of t (SurfaceForm). The one
+// (material_at; no normal map then); kForm: what the caller knows of t (SurfaceForm). With
+// kFiltered, the ray is a cone `cone_width` wide where it meets the surface (a pixel's footprint)
+// and the textures are filtered over that footprint on the surface (TextureView's lookup over
+// its levels), the ray cones of Akenine-Moller et al. 2019, "Texture Level of Detail Strategies
+// for Real-Time Ray Tracing" (Ray Tracing Gems, ch. 20); else read at the point. The one
 // implementation behind every surface_at form.
-template <bool kMeanTextures = false, SurfaceForm kForm = SurfaceForm{}, typename Textures>
+template <bool kMeanTextures = false, SurfaceForm kForm = SurfaceForm{}, bool kFiltered = false,
+          typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec2 barycentric,
-                                                   vec3 direction, const Textures& textures) {
+                                                   vec3 direction, const Textures& textures,
+                                                   float cone_width = 0.0f) {
   const MaterialRecord& material = *t.material;
   const float b1 = barycentric.x, b2 = barycentric.y, b0 = 1.0f - b1 - b2;
 
@@ -124,7 +137,15 @@ BOUNCE_HD BOUNCE_LANE_INLINE SurfaceHit surface_on(const SurfaceTriangle& t, vec
   }
   // Interpolated normals live on the same side as the face normal we shade from.
   s.normal = glm::dot(normal, s.geometric_normal) < 0.0f ? -normal : normal;
-  const MaterialPoint m = material_at<kMeanTextures, kForm.material>(material, textures, uv);
+  // A cone meeting the surface at an angle covers an ellipse 1 / cos wider one way: filtered over
+  // a square of the same area, which blurs less than the ellipse's long axis would.
+  float uv_width = 0.0f;
+  if constexpr (kFiltered) {
+    const float cos_in = glm::max(std::fabs(glm::dot(direction, face)), 1e-3f);
+    uv_width = cone_width * t.uv_per_metre * (1.0f / std::sqrt(cos_in));
+  }
+  const MaterialPoint m =
+      material_at<kMeanTextures, kForm.material, kFiltered>(material, textures, uv, uv_width);
   s.albedo = load3(m.albedo);
   s.f0 = load3(m.f0);
   s.roughness = m.roughness;

@@ -35,6 +35,8 @@ struct CameraRays {
     const float sy = 1.0f - py * (2.0f / height);
     return glm::normalize(forward + sx * right + sy * up);
   }
+  // The angle one pixel spans at the image's centre, radians (small): a primary ray's cone.
+  BOUNCE_HD float pixel_spread() const { return 2.0f * glm::length(up) / height; }
   // Continuous pixel position of a world point in front of the camera (inverse of direction).
   BOUNCE_HD vec2 project(vec3 p) const {
     const vec3 d = p - origin;

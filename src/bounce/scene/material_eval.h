@@ -19,22 +19,30 @@ struct MaterialPoint {
 
 // Inlined (as TextureView::sample is): out of line, its vec3 came back in two registers that the
 // caller stored and reloaded as one, a load that waits for every earlier store to drain (the
-// G-buffer's writes to memory); 0.45 ms of a level's G-buffer at 640x360.
-template <typename Textures>
+// G-buffer's writes to memory); 0.45 ms of a level's G-buffer at 640x360. kFiltered: filtered
+// over a footprint `uv_width` wide in the material's texture coordinates (TextureView's
+// lookup over its chain of levels), else level 0 at the point (a path tracer's many samples filter
+// it).
+template <bool kFiltered = false, typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_at(const Textures& textures, int index,
-                                             const TextureTransform& transform, vec2 uv) {
-  return textures[index].sample(transform.apply(uv));
+                                             const TextureTransform& transform, vec2 uv,
+                                             float uv_width = 0.0f) {
+  if constexpr (kFiltered)
+    return textures[index].sample(transform.apply(uv), uv_width * transform.scale());
+  else
+    return textures[index].sample(transform.apply(uv));
 }
 
 // A texture's value at uv, or with kMean its mean (TextureView::mean): a lookup that stands for
 // the whole texture.
-template <bool kMean, typename Textures>
+template <bool kMean, bool kFiltered = false, typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE vec3 texture_or_mean(const Textures& textures, int index,
-                                                  const TextureTransform& transform, vec2 uv) {
+                                                  const TextureTransform& transform, vec2 uv,
+                                                  float uv_width = 0.0f) {
   if constexpr (kMean)
     return textures[index].mean;
   else
-    return texture_at(textures, index, transform, uv);
+    return texture_at<kFiltered>(textures, index, transform, uv, uv_width);
 }
 
 // Which of a material's textures and workflow a loop knows before it starts (material_at's
@@ -72,22 +80,25 @@ struct MaterialForm {
 // from a random place in memory). Inlined, as texture_at is: out of line, its MaterialPoint
 // went back through memory (a level's G-buffer at 1280 x 720: median 37.6 -> 36.0 ms over eight
 // alternated runs each; docs/benchmarks.md).
-template <bool kMeanTextures = false, MaterialForm kForm = MaterialForm{}, typename Textures>
+// kFiltered, uv_width: texture_at's.
+template <bool kMeanTextures = false, MaterialForm kForm = MaterialForm{}, bool kFiltered = false,
+          typename Textures>
 BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
-                                                       const Textures& textures, vec2 uv) {
+                                                       const Textures& textures, vec2 uv,
+                                                       float uv_width = 0.0f) {
   MaterialPoint p;
-  const vec3 tint =
-      kForm.has_albedo_texture(m)
-          ? texture_or_mean<kMeanTextures>(textures, m.albedo_texture, m.albedo_transform, uv)
-          : vec3(1.0f);
+  const vec3 tint = kForm.has_albedo_texture(m)
+                        ? texture_or_mean<kMeanTextures, kFiltered>(
+                              textures, m.albedo_texture, m.albedo_transform, uv, uv_width)
+                        : vec3(1.0f);
   p.roughness = m.roughness;
   if (kForm.is_metallic(m)) {
     // glTF: the metallic-roughness texture's green scales roughness and its blue metallic; a
     // metal's base colour is its specular colour, a dielectric's its diffuse albedo.
     float metallic = m.metallic;
     if (kForm.has_metal_rough_texture(m)) {
-      const vec3 mr = texture_or_mean<kMeanTextures>(textures, m.metal_rough_texture,
-                                                     m.metal_rough_transform, uv);
+      const vec3 mr = texture_or_mean<kMeanTextures, kFiltered>(
+          textures, m.metal_rough_texture, m.metal_rough_transform, uv, uv_width);
       p.roughness = glm::clamp(p.roughness * mr.y, 0.0f, 1.0f);
       metallic = glm::clamp(metallic * mr.z, 0.0f, 1.0f);
     }
@@ -100,8 +111,8 @@ BOUNCE_HD BOUNCE_LANE_INLINE MaterialPoint material_at(const MaterialRecord& m,
   }
   p.emission = load3(m.emission);
   if (kForm.has_emission_texture(m))
-    p.emission *=
-        texture_or_mean<kMeanTextures>(textures, m.emission_texture, m.emission_transform, uv);
+    p.emission *= texture_or_mean<kMeanTextures, kFiltered>(textures, m.emission_texture,
+                                                            m.emission_transform, uv, uv_width);
   return p;
 }
 

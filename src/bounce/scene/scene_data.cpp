@@ -49,8 +49,10 @@ void SceneData::build(const Scene& scene) {
   }
   triangle_offsets_ = scene.triangle_offsets;
 
+  // Each texture's whole chain of levels (a third more texels), for lookups whose footprint
+  // covers many texels (the G-buffer's).
   size_t texels = 0;
-  for (const Texture& t : scene.textures) texels += t.texels.size();
+  for (const Texture& t : scene.textures) texels += texture_chain_texels(t.width, t.height);
   texels_.resize(texels);
   textures_.resize(scene.textures.size());
   texels = 0;
@@ -58,7 +60,8 @@ void SceneData::build(const Scene& scene) {
     const Texture& t = scene.textures[i];
     std::copy(t.texels.begin(), t.texels.end(), texels_.begin() + texels);
     textures_[i] = {texels_.data() + texels, t.width, t.height, mean_texel(t)};
-    texels += t.texels.size();
+    build_texture_levels(textures_[i], texels_.data() + texels);
+    texels += texture_chain_texels(t.width, t.height);
   }
   copy_small_arrays(scene);
   point_meshes();
