@@ -18,24 +18,12 @@ namespace {
 // The unit quad at z = 0 facing +z, its texture coordinates its x and y, textured with a
 // checkerboard of `n` x `n` black and white texels.
 Scene checkerboard_quad(int n) {
-  Scene s;
   Texture t;
   t.name = "checkerboard";
   t.width = t.height = n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) t.texels.push_back(vec3(float((x + y) % 2)));
-  s.textures.push_back(t);
-  Material m;
-  m.name = "checkerboard";
-  m.albedo = vec3(1.0f);
-  m.albedo_texture = 0;
-  s.materials.push_back(m);
-  Mesh quad =
-      scene_test::quad_mesh("quad", vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), 0);
-  quad.uvs = {vec2(0.0f), vec2(1.0f, 0.0f), vec2(1.0f), vec2(0.0f, 1.0f)};
-  s.meshes.push_back(quad);
-  s.finalize();
-  return s;
+  return scene_test::textured_unit_quad(t, vec3(1.0f));
 }
 
 TEST(TextureLod, APixelSpanningManyTexelsReadsTheirMean) {

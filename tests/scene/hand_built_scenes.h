@@ -63,6 +63,23 @@ inline uint32_t add_half_cut_out_material(Scene& s) {
   return uint32_t(s.materials.size() - 1);
 }
 
+// A scene of the unit quad at z = 0 facing +z, its texture coordinates its x and y, with one
+// material of albedo `albedo` times `texture`.
+inline Scene textured_unit_quad(const Texture& texture, vec3 albedo) {
+  Scene s;
+  s.textures.push_back(texture);
+  Material m;
+  m.name = texture.name;
+  m.albedo = albedo;
+  m.albedo_texture = 0;
+  s.materials.push_back(m);
+  Mesh quad = quad_mesh("quad", vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), 0);
+  quad.uvs = {vec2(0.0f), vec2(1.0f, 0.0f), vec2(1.0f), vec2(0.0f, 1.0f)};
+  s.meshes.push_back(quad);
+  s.finalize();
+  return s;
+}
+
 // An outward sphere of 2 r^2 triangles with bumps, so that no rotation maps it onto itself.
 inline Mesh bumpy_ball(int r, vec3 centre, float radius, uint32_t material = 0) {
   Mesh m;

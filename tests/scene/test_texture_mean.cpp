@@ -13,20 +13,7 @@ namespace {
 
 // A quad textured with a 2 x 2 checker of red, green, blue and yellow.
 Scene checker_quad() {
-  Scene s;
-  s.textures.push_back(checker_texture());
-  Material m;
-  m.name = "checker";
-  m.albedo = vec3(0.5f);
-  m.albedo_texture = 0;
-  s.materials.push_back(m);
-  // Corners (0,0,0), (1,0,0), (1,1,0), (0,1,0), with the same texture coordinates.
-  Mesh quad =
-      scene_test::quad_mesh("quad", vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), 0);
-  quad.uvs = {vec2(0.0f), vec2(1.0f, 0.0f), vec2(1.0f), vec2(0.0f, 1.0f)};
-  s.meshes.push_back(quad);
-  s.finalize();
-  return s;
+  return scene_test::textured_unit_quad(checker_texture(), vec3(0.5f));
 }
 
 TEST(TextureMean, PhotonHitsReadTheTexturesMeanAndPixelsTheTexels) {
