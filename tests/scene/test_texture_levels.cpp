@@ -3,6 +3,7 @@
 // mean for a footprint as wide as the texture, and the finer level between.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "bounce/core/rng.h"
@@ -73,6 +74,16 @@ TEST(TextureLevels, APointReadsLevelZeroAndTheWholeTextureItsMean) {
     EXPECT_EQ(c.view.sample(uv, 1.9f / 8.0f), c.view.sample(uv));
     EXPECT_EQ(c.view.sample(uv, 3.9f / 8.0f), vec3(0.5f));
   }
+}
+
+// A footprint that is not a number (absurd texture coordinates per metre times a zero distance)
+// reads level 0, an infinite one the last level: never outside the chain.
+TEST(TextureLevels, AbsurdFootprintsStayInTheChain) {
+  const Chain c = chain_of(8, 8, checkerboard(8));
+  const vec2 uv(0.3f, 0.7f);
+  EXPECT_EQ(c.view.sample(uv, std::numeric_limits<float>::quiet_NaN()), c.view.sample(uv));
+  EXPECT_EQ(c.view.sample(uv, std::numeric_limits<float>::infinity()), vec3(0.5f));
+  EXPECT_EQ(c.view.sample(uv, -1.0f), c.view.sample(uv));
 }
 
 // The level of detail's log2: exact at powers of two, piecewise linear between (at most 0.09

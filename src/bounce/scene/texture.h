@@ -86,7 +86,8 @@ struct TextureView {
   // nearer of the two blurred more than the reference: docs/benchmarks.md, stop 49.)
   BOUNCE_HD BOUNCE_LANE_INLINE vec3 sample(vec2 uv, float uv_width) const {
     const float across = uv_width * std::sqrt(float(width) * float(height));
-    const float lod = coarse_log2(glm::max(across, 1.0f));
+    // (Not a number, from absurd texture coordinates: level 0; infinite: the last level.)
+    const float lod = coarse_log2(across >= 1.0f ? across : 1.0f);
     const int k = glm::min(int(lod), levels - 1);
     return sample_level(uv, texels, level_offset[k], level_width(k), level_height(k));
   }
