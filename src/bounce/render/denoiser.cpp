@@ -125,20 +125,10 @@ void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
   });
 }
 
-// Clips the history texel at entry x of four row planes (rgb, mean squared luminance) to `box`.
+// Clips the history texel at entry x of four row planes (rgb, mean squared luminance) to `box`
+// where `clip` is set (a constant true where every pixel is clipped: the pick folds away).
 BOUNCE_LANE_INLINE void clip_entry(float* const* c, int x, const denoise::ColorBox& box,
-                                   float gamma) {
-  vec4 h(c[0][x], c[1][x], c[2][x], c[3][x]);
-  denoise::clip_history(box, gamma, h);
-  c[0][x] = h.x;
-  c[1][x] = h.y;
-  c[2][x] = h.z;
-  c[3][x] = h.w;
-}
-
-// Clips the history texel at entry x of four row planes to `box` where `clip` is set.
-BOUNCE_LANE_INLINE void clip_entry_where(float* const* c, int x, const denoise::ColorBox& box,
-                                         float gamma, bool clip) {
+                                   float gamma, bool clip) {
   const vec4 h0(c[0][x], c[1][x], c[2][x], c[3][x]);
   vec4 h = h0;
   denoise::clip_history(box, gamma, h);
@@ -164,48 +154,46 @@ void direct_region_row(const LightChangeRegion& r, const vec3* position, int wid
 }
 
 // Clips the row's reprojected history to this frame's neighbourhoods (the world changed), from
-// demodulate_pass's planes: indirect light everywhere, direct light in the pass's direct_region.
-// A history not kept is clipped too: it is not read.
-template <bool kIndirect>
-void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, int y,
-              const denoise::ReprojectedRow& row) {
+// demodulate_pass's planes: indirect light everywhere, direct light where `inside` is set, or
+// everywhere with kEverywhere. A history not kept is clipped too: it is not read.
+template <bool kIndirect, bool kEverywhere>
+void clip_row_where(const denoise::TemporalPass& p, const float* const* demodulated, int y,
+                    const denoise::ReprojectedRow& row, const float* inside) {
   size_t rows[3];
   float row_mask[3];
   for (int k = 0; k < 3; ++k) {
     const int qy = y + k - 1;
-    const bool inside = qy >= 0 && qy < p.height;
-    rows[k] = size_t(inside ? qy : y) * size_t(p.width);
-    row_mask[k] = inside ? 1.0f : 0.0f;
+    const bool in_image = qy >= 0 && qy < p.height;
+    rows[k] = size_t(in_image ? qy : y) * size_t(p.width);
+    row_mask[k] = in_image ? 1.0f : 0.0f;
   }
   float* v[8];
   for (int c = 0; c < 8; ++c) v[c] = row.v[c];
   const float gamma = p.s.clip_gamma;
-  if (p.direct_region.everywhere) {
-    auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
-      const denoise::ColorBoxes boxes = denoise::neighbourhood_planes<kIndirect, kChecked>(
-          demodulated, rows, row_mask, x, p.width);
-      clip_entry(v, x, boxes.direct, gamma);
-      if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma);
-    };
-    row_loop(
-        p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
-        [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
-    return;
-  }
-  thread_local std::vector<float> inside_row;
-  inside_row.resize(size_t(p.width));
-  const float* inside = inside_row.data();
-  direct_region_row(p.direct_region, p.g.position + size_t(y) * size_t(p.width), p.width,
-                    inside_row.data());
   auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
     const denoise::ColorBoxes boxes =
         denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
-    clip_entry_where(v, x, boxes.direct, gamma, inside[x] != 0.0f);
-    if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma);
+    clip_entry(v, x, boxes.direct, gamma, kEverywhere || inside[x] != 0.0f);
+    if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma, true);
   };
   row_loop(
       p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
       [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+}
+
+// clip_row_where with direct light clipped in the pass's direct_region.
+template <bool kIndirect>
+void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, int y,
+              const denoise::ReprojectedRow& row) {
+  if (p.direct_region.everywhere) {
+    clip_row_where<kIndirect, true>(p, demodulated, y, row, nullptr);
+    return;
+  }
+  thread_local std::vector<float> inside_row;
+  inside_row.resize(size_t(p.width));
+  direct_region_row(p.direct_region, p.g.position + size_t(y) * size_t(p.width), p.width,
+                    inside_row.data());
+  clip_row_where<kIndirect, false>(p, demodulated, y, row, inside_row.data());
 }
 
 // Row y's reprojected history (denoise::reproject_moved at every pixel) into `row`: eight pixels
