@@ -187,8 +187,8 @@ void add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--light-candidates", o->light_candidates,
                   fmt::format("Scenes with more than {} lights: light samples drawn by power per "
-                              "next-event estimate, one kept by its unshadowed contribution (1: "
-                              "the one drawn)",
+                              "next-event estimate, one kept by its unshadowed contribution (with "
+                              "fewer lights a sample of each; 1: one light drawn by power)",
                               PathSettings().resample_above_lights))
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

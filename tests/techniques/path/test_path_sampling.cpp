@@ -366,5 +366,50 @@ TEST(PathSampling, ResampledLightSamplesAgreeWithPowerPicksAndAreLessNoisy) {
   }
 }
 
+// A point in a narrow spot's beam, among three lamps of far more power (the flashlight in a
+// level lit by its lamps): picked by power, the spot is the light sampled in one estimate of
+// about thirty, and the point's light is mostly its. With few lights each next-event estimate
+// resamples a sample of every light instead: the same mean, a fraction of the noise.
+TEST(PathSampling, FewLightsResampledFromASampleOfEachAgreeWithPowerPicksAndAreLessNoisy) {
+  Scene s;
+  s.source = "a beam among lamps";
+  const Material floor = floor_material(vec3(0.5f, 0.45f, 0.4f), 0.6f, vec3(0.04f));
+  s.materials = {floor};
+  Mesh mesh;
+  mesh.name = "scene";
+  scene_test::add_quad(mesh, vec3(-10, 0, -10), vec3(0, 0, 20), vec3(20, 0, 0), 0);
+  for (int i = 0; i < 3; ++i) {  // 1 m^2 lamps facing down, 4 to 8 m away
+    s.materials.push_back(lamp_material(vec3(10.0f)));
+    scene_test::add_quad(mesh, vec3(-8.0f + 6.0f * float(i), 3.0f, -6.0f), vec3(1, 0, 0),
+                         vec3(0, 0, 1), uint32_t(s.materials.size() - 1));
+  }
+  s.meshes.push_back(mesh);
+  s.lights.push_back(Light::spot(vec3(0.0f, 2.0f, 0.0f), vec3(0, -1, 0), vec3(40.0f), 5.0f, 8.0f));
+  s.finalize();
+  const LightPicker picker = LightPicker::build(s);
+  ASSERT_EQ(picker.pmf.size(), 4u);
+  ASSERT_LT(picker.light_pmf(0), 0.05f);  // the spot: rarely picked by power
+  const SurfaceHit x{.position = vec3(0.1f, 0.0f, -0.05f),
+                     .normal = vec3(0, 1, 0),
+                     .geometric_normal = vec3(0, 1, 0),
+                     .albedo = floor.albedo,
+                     .f0 = floor.f0,
+                     .roughness = floor.roughness};
+  const vec3 wo = glm::normalize(vec3(0.3f, 1.0f, 0.2f));
+  const Estimate picked = estimate_direct(s, x, wo, LightStrategy::kMis, 100000, 1);
+  const Estimate resampled = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);
+  const Estimate light = estimate_direct(s, x, wo, LightStrategy::kLightOnly, 100000);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(resampled.mean(k), picked.mean(k),
+                5.0 * std::hypot(picked.standard_error(k), resampled.standard_error(k)))
+        << "channel " << k;
+    EXPECT_NEAR(resampled.mean(k), light.mean(k),
+                5.0 * std::hypot(resampled.standard_error(k), light.standard_error(k)))
+        << "channel " << k;
+    EXPECT_LT(resampled.standard_error(k), 0.25 * picked.standard_error(k)) << "channel " << k;
+    EXPECT_LT(resampled.standard_error(k), 0.01 * resampled.mean(k)) << "too noisy to test";
+  }
+}
+
 }  // namespace
 }  // namespace bounce

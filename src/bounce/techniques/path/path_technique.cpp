@@ -13,7 +13,8 @@ PathTracing::PathTracing() {
                   "path vertex from which Russian roulette may end a path");
   params_.add_int("light_candidates", &light_candidates_, 1, 64,
                   "scenes with many lights: light samples drawn by power per next-event "
-                  "estimate, one kept by its unshadowed contribution (1: the one drawn)");
+                  "estimate, one kept by its unshadowed contribution (with 2-8 lights a sample "
+                  "of each; 1: one light drawn by power)");
   params_.add_int("samples", &samples_, 1, 4096, "paths per pixel per frame");
   params_.add_int("seed", &seed_, 0, 1 << 30, "seed of the paths' random numbers");
 }

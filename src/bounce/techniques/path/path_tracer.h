@@ -49,8 +49,10 @@ struct PathSettings {
   // entries) keeps one of light_candidates light samples drawn by power, resampled by their
   // unshadowed contribution (light_resampling.h), as direct light does in such scenes
   // (DirectSettings::max_looped_lights): a light picked by power alone is, in a level with
-  // dozens of lamps, mostly one out of the vertex's sight. Elsewhere, and with one candidate,
-  // one sample drawn by power.
+  // dozens of lamps, mostly one out of the vertex's sight. In scenes with 2 to
+  // resample_above_lights lights it keeps one of a sample of every light, the same way: a
+  // flashlight among a level's far brighter lamps, picked by power, lit its beam in a path or
+  // two out of dozens. With one candidate, and with a single light, one sample drawn by power.
   uint32_t resample_above_lights = kResampleAboveLights;
   int light_candidates = kLightCandidates;
 };
@@ -93,16 +95,15 @@ BOUNCE_HD inline Pcg32 path_rng(uint32_t pixel, uint32_t sample, uint32_t seed) 
   return Pcg32(splitmix64((uint64_t(pixel) << 32) | sample), seed);
 }
 
-// One light sample's unshadowed estimate at x: the light entry u_pick picks by power, the point u
-// places on it, seen from p (x's offset origin); its radiance towards wo over the sample's
-// probability, with the light strategy's MIS weight. `ray` is its shadow ray; the estimate is 0
-// where the sample brings nothing.
-BOUNCE_HD inline vec3 light_sample_estimate(const PathScene& ps, const PathSettings& settings,
-                                            const SurfaceHit& x, vec3 p, vec3 wo, float u_pick,
-                                            vec2 u, Ray& ray) {
-  const uint32_t entry = ps.lights.pick(u_pick);
-  const float pick_pdf = ps.lights.pmf[entry];
-  if (!(pick_pdf > 0.0f)) return vec3(0.0f);
+// One light sample's unshadowed estimate at x: a point u places on light `entry`, seen from p
+// (x's offset origin); its radiance towards wo over the sample's probability times `pick_pdf`
+// (the entry's chance to be the one sampled), with the light strategy's MIS weight for a pick by
+// power. `ray` is its shadow ray; the estimate is 0 where the sample brings nothing.
+BOUNCE_HD inline vec3 light_entry_estimate(const PathScene& ps, const PathSettings& settings,
+                                           const SurfaceHit& x, vec3 p, vec3 wo, uint32_t entry,
+                                           float pick_pdf, vec2 u, Ray& ray) {
+  const float power_pdf = ps.lights.pmf[entry];
+  if (!(power_pdf > 0.0f)) return vec3(0.0f);
   const EntrySample sample = sample_light_entry(ps.scene, ps.lights.light_count, entry, p, u);
   const LightSample& ls = sample.ls;
   const bool delta = sample.delta;
@@ -116,23 +117,33 @@ BOUNCE_HD inline vec3 light_sample_estimate(const PathScene& ps, const PathSetti
   if (max_component(f) <= 0.0f) return vec3(0.0f);
   float weight = 1.0f;
   if (!delta && settings.strategy == LightStrategy::kMis)
-    weight = power_heuristic(pick_pdf * ls.pdf, bsdf_pdf(x, wo, ls.wi));
+    weight = power_heuristic(power_pdf * ls.pdf, bsdf_pdf(x, wo, ls.wi));
   if (weight <= 0.0f) return vec3(0.0f);
   ray = shadow_ray(p, ls);
   return f * ls.weight * (cos_i * weight / pick_pdf);
 }
 
+// light_entry_estimate for the light entry u_pick picks by power.
+BOUNCE_HD inline vec3 light_sample_estimate(const PathScene& ps, const PathSettings& settings,
+                                            const SurfaceHit& x, vec3 p, vec3 wo, float u_pick,
+                                            vec2 u, Ray& ray) {
+  const uint32_t entry = ps.lights.pick(u_pick);
+  return light_entry_estimate(ps, settings, x, p, wo, entry, ps.lights.pmf[entry], u, ray);
+}
+
 // Next-event estimation at x: one light sample, one shadow ray from p (x's offset origin). The
-// sample is drawn by power, or in scenes with many lights resampled from candidates drawn by
-// power (PathSettings::light_candidates). The MIS weights stay those of the sample drawn by
-// power, on both sides (emission_weight): they sum to one whatever the light sample's actual
-// density, and resampling an estimate that carries its weight leaves it unbiased. Returns the
-// radiance x reflects towards wo from that sample.
+// sample is drawn by power, or resampled by unshadowed contribution from a sample of every light
+// (scenes with few lights) or from candidates drawn by power (scenes with many lights;
+// PathSettings::light_candidates). The MIS weights stay those of the sample drawn by power, on
+// both sides (emission_weight): they sum to one whatever the light sample's actual density, and
+// resampling an estimate that carries its weight leaves it unbiased. Returns the radiance x
+// reflects towards wo from that sample.
 BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& settings,
                                        const SurfaceHit& x, vec3 p, vec3 wo, Pcg32& rng,
                                        PathCounters& counters) {
-  const int m =
-      ps.lights.count > settings.resample_above_lights ? glm::max(settings.light_candidates, 1) : 1;
+  const bool resample = settings.light_candidates > 1 && ps.lights.count > 1;
+  const bool every_light = resample && ps.lights.count <= settings.resample_above_lights;
+  const int m = !resample ? 1 : every_light ? int(ps.lights.count) : settings.light_candidates;
   // Each candidate draws its numbers first, so that the path's later decisions use the same
   // ones whatever happens here.
   Ray ray;
@@ -143,13 +154,19 @@ BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& 
     if (ps.lights.empty()) return vec3(0.0f);
     estimate = light_sample_estimate(ps, settings, x, p, wo, u_pick, u, ray);
   } else {
+    // A candidate's estimate is an unbiased estimate of its light's share (every light) or of
+    // all the light (a pick by power); the kept one is scaled by (sum of weights) / (its own),
+    // and over m picks by power by 1 / m as well.
     LightReservoir reservoir;
     for (int j = 0; j < m; ++j) {
       const float u_pick = rng.next_float();
       const vec2 u = rng.next2();
       const float u_keep = rng.next_float();
       Ray candidate_ray;
-      const vec3 e = light_sample_estimate(ps, settings, x, p, wo, u_pick, u, candidate_ray);
+      const vec3 e =
+          every_light
+              ? light_entry_estimate(ps, settings, x, p, wo, uint32_t(j), 1.0f, u, candidate_ray)
+              : light_sample_estimate(ps, settings, x, p, wo, u_pick, u, candidate_ray);
       const float w = luminance(e);
       if (!(w > 0.0f)) continue;
       if (reservoir.offer(w, u_keep)) {
@@ -158,7 +175,7 @@ BOUNCE_HD inline vec3 sample_one_light(const PathScene& ps, const PathSettings& 
       }
     }
     if (reservoir.empty()) return vec3(0.0f);
-    estimate *= reservoir.total / (float(m) * reservoir.kept);
+    estimate *= reservoir.total / ((every_light ? 1.0f : float(m)) * reservoir.kept);
   }
   if (max_component(estimate) <= 0.0f) return vec3(0.0f);
   ++counters.rays;

@@ -72,8 +72,8 @@ struct ReferenceCheckpointKey {
 };
 
 // The key as NAME=VALUE text fields (scene, width, height, seed, max_bounces, rr_start,
-// sample_offset, light_candidates): what a checkpoint file and a reference image's EXR header
-// record.
+// sample_offset, light_candidates, and the version of the next-event estimate's scheme): what a
+// checkpoint file and a reference image's EXR header record.
 std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpointKey& key);
 
 // Saves the state atomically (a temporary file renamed over `path`), in a binary file that

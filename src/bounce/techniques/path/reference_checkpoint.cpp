@@ -18,6 +18,10 @@ namespace bounce {
 namespace {
 
 constexpr const char* kMagic = "bounce reference checkpoint 1";
+// The next-event estimate's scheme, so that samples of different schemes are never merged: 2
+// resamples a sample of every light in scenes with 2 to 8 lights (1, before it, had no field
+// and picked one light by power there).
+constexpr const char* kNextEventVersion = "2";
 
 }  // namespace
 
@@ -29,7 +33,8 @@ std::map<std::string, std::string> reference_key_fields(const ReferenceCheckpoin
           {"max_bounces", std::to_string(k.max_bounces)},
           {"rr_start", std::to_string(k.rr_start)},
           {"sample_offset", std::to_string(k.first_sample)},
-          {"light_candidates", std::to_string(k.light_candidates)}};
+          {"light_candidates", std::to_string(k.light_candidates)},
+          {"next_event_version", kNextEventVersion}};
 }
 
 void save_reference_checkpoint(const std::string& path, const ReferenceCheckpointKey& key,
