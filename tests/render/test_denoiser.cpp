@@ -516,6 +516,37 @@ TEST(Denoiser, DemodulationRoundTripsAlbedo) {
   }
 }
 
+// A dark texture whose blue crosses the albedo floor from pixel to pixel (OpenArena's rubble and
+// trims): the filter mixes the pixels' demodulated light, and each gets back about its own
+// albedo's share, within the channel floor's (denoise::demodulation_factor). With a black
+// channel demodulated by 1, the pixels below the floor took their neighbours' light falling on
+// them back undivided: blue specks hundreds of times too bright.
+TEST(Denoiser, AChannelAcrossTheAlbedoFloorLeavesNoSpecks) {
+  GBuffer g = plane(20, 20);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x)
+      g.albedo[g.view().index(x, y)] =
+          vec3(0.5f, 0.3f, ((x + y) % 2 == 0 ? 0.5f : 2.0f) * denoise::kAlbedoFloor);
+  const vec3 light(0.8f, 0.5f, 0.3f);
+  const Image lit =
+      image_of(20, 20, [&](int x, int y) { return g.albedo[g.view().index(x, y)] * light; });
+  Denoiser d;
+  for (const HistoryState state : {HistoryState::kReset, HistoryState::kRest}) {
+    const Output out = run(d, g, state, lit, &lit);
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x) {
+        const std::string where = std::to_string(x) + "," + std::to_string(y);
+        expect_near_rel(vec3(out.direct.at(x, y).x, out.direct.at(x, y).y, 0.0f),
+                        vec3(lit.at(x, y).x, lit.at(x, y).y, 0.0f), 1e-5f, where);
+        // Blue within the light the channel floor stands for (the blue albedos are 0.5 and 2
+        // times the black floor, far below the channel floor).
+        const float floor_light = denoise::kChannelFloor * 0.5f * light.z;
+        EXPECT_NEAR(out.direct.at(x, y).z, lit.at(x, y).z, floor_light) << where;
+        EXPECT_NEAR(out.indirect.at(x, y).z, lit.at(x, y).z, floor_light) << where;
+      }
+  }
+}
+
 // At rest the history is a plain running average: N frames of independent noise come out as
 // their exact mean (no cap on the history), direct and per-frame indirect alike.
 TEST(Denoiser, FramesAtRestAverageToTheirExactMean) {

@@ -21,8 +21,10 @@
 
 namespace bounce::denoise {
 
-// An albedo channel at or below this is "black": light is demodulated by 1 there.
+// An albedo at or below this in every channel is "black": light is not demodulated there.
 inline constexpr float kAlbedoFloor = 1e-3f;
+// A channel is demodulated by at least this fraction of the albedo's brightest channel.
+inline constexpr float kChannelFloor = 0.05f;
 // Below this many frames in a pixel's estimate its variance is estimated spatially.
 inline constexpr float kShortHistory = 4.0f;
 inline constexpr float kLog2e = 1.44269504f;
@@ -142,10 +144,20 @@ BOUNCE_HD inline bool reflects_light(vec3 albedo, vec3 f0) {
   return glm::max(max_component(albedo), max_component(f0)) > kAlbedoFloor;
 }
 
-// What light is divided by: the albedo, or 1 where a channel is black (nothing to divide).
+// What light is divided by: the albedo, each channel at least kChannelFloor times its brightest
+// channel (continuous in the albedo), or 1 where every channel is black (an emitter, a mirror:
+// their light is not the albedo's). With 1 for each black channel instead, a dark texture whose
+// blue crossed the floor from texel to texel divided on one side and not on the other, and the
+// filters, which mix neighbours' demodulated light, gave the pixels below the floor their
+// neighbours' incident light back undivided: specks of pure colour. A floor of absolute size
+// would amplify light that is not the albedo's (a highlight in a black channel) a thousandfold.
 BOUNCE_HD inline vec3 demodulation_factor(vec3 albedo) {
-  return {albedo.x > kAlbedoFloor ? albedo.x : 1.0f, albedo.y > kAlbedoFloor ? albedo.y : 1.0f,
-          albedo.z > kAlbedoFloor ? albedo.z : 1.0f};
+  const float top = glm::max(albedo.x, glm::max(albedo.y, albedo.z));
+  const bool black = !(top > kAlbedoFloor);
+  const float low = kChannelFloor * top;
+  return {black ? 1.0f : (albedo.x > low ? albedo.x : low),
+          black ? 1.0f : (albedo.y > low ? albedo.y : low),
+          black ? 1.0f : (albedo.z > low ? albedo.z : low)};
 }
 
 // 2^x for x <= 0, and exactly 0 below -126: the filter's weights. On the CPU a cubic (relative
