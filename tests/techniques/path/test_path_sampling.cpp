@@ -262,6 +262,15 @@ Material floor_material(vec3 albedo, float roughness, vec3 f0) {
   m.f0 = f0;
   return m;
 }
+// A point of a floor facing up (+y) made of `m`.
+SurfaceHit floor_point(vec3 position, const Material& m) {
+  return {.position = position,
+          .normal = vec3(0, 1, 0),
+          .geometric_normal = vec3(0, 1, 0),
+          .albedo = m.albedo,
+          .f0 = m.f0,
+          .roughness = m.roughness};
+}
 // Black, emitting `emission`.
 Material lamp_material(vec3 emission) {
   Material m;
@@ -286,12 +295,7 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
   s.finalize();
   ASSERT_EQ(s.area_lights.size(), 1u);
   ASSERT_GT(s.meshes[0].face_normal_area2(2).y * -1.0f, 0.0f) << "the lamp must face down";
-  const SurfaceHit x{.position = vec3(0.0f),
-                     .normal = vec3(0, 1, 0),
-                     .geometric_normal = vec3(0, 1, 0),
-                     .albedo = floor.albedo,
-                     .f0 = floor.f0,
-                     .roughness = floor.roughness};
+  const SurfaceHit x = floor_point(vec3(0.0f), floor);
   for (vec3 wo : {glm::normalize(vec3(-1.0f, 0.8f, 0.0f)), glm::normalize(vec3(1.0f, 1.2f, 0.0f)),
                   vec3(0, 1, 0)}) {
     const Estimate mis = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);
@@ -308,6 +312,13 @@ TEST(PathSampling, StrategiesAgreeOnAGlossyFloorUnderAQuadAndASphereLight) {
       EXPECT_LT(mis.standard_error(k), 0.02 * mis.mean(k)) << "too noisy to test anything";
     }
   }
+}
+
+// Two estimates of the same radiance: their means within five combined standard errors.
+void expect_same_mean(const Estimate& a, const Estimate& b, const std::string& what) {
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(a.mean(k), b.mean(k), 5.0 * std::hypot(a.standard_error(k), b.standard_error(k)))
+        << what << ", channel " << k;
 }
 
 // A glossy floor under 30 lamps of equal power (24 small quads facing down, 4 sphere lights and
@@ -341,26 +352,16 @@ TEST(PathSampling, ResampledLightSamplesAgreeWithPowerPicksAndAreLessNoisy) {
         Light::sphere(vec3(-6.0f + 4.0f * float(i), 1.5f, 7.0f), 0.1f, vec3(6.0f, 5.0f, 4.0f)));
   s.finalize();
   ASSERT_EQ(s.area_lights.size(), 26u);
-  const SurfaceHit x{.position = vec3(0.2f, 0.0f, 0.1f),
-                     .normal = vec3(0, 1, 0),
-                     .geometric_normal = vec3(0, 1, 0),
-                     .albedo = floor.albedo,
-                     .f0 = floor.f0,
-                     .roughness = floor.roughness};
+  const SurfaceHit x = floor_point(vec3(0.2f, 0.0f, 0.1f), floor);
   const vec3 wo = glm::normalize(vec3(-1.0f, 1.0f, 0.3f));
   const Estimate picked = estimate_direct(s, x, wo, LightStrategy::kMis, 100000, 1);
   const Estimate resampled = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);
   const Estimate light = estimate_direct(s, x, wo, LightStrategy::kLightOnly, 100000);
   const Estimate bsdf = estimate_direct(s, x, wo, LightStrategy::kBsdfOnly, 100000);
+  expect_same_mean(resampled, picked, "picked by power");
+  expect_same_mean(resampled, light, "light sampling alone");
+  expect_same_mean(resampled, bsdf, "BSDF sampling alone");
   for (int k = 0; k < 3; ++k) {
-    const double se = std::hypot(picked.standard_error(k), resampled.standard_error(k));
-    EXPECT_NEAR(resampled.mean(k), picked.mean(k), 5.0 * se) << "channel " << k;
-    EXPECT_NEAR(resampled.mean(k), light.mean(k),
-                5.0 * std::hypot(resampled.standard_error(k), light.standard_error(k)))
-        << "channel " << k;
-    EXPECT_NEAR(resampled.mean(k), bsdf.mean(k),
-                5.0 * std::hypot(resampled.standard_error(k), bsdf.standard_error(k)))
-        << "channel " << k;
     EXPECT_LT(resampled.standard_error(k), 0.5 * picked.standard_error(k)) << "channel " << k;
     EXPECT_LT(resampled.standard_error(k), 0.02 * resampled.mean(k)) << "too noisy to test";
   }
@@ -389,23 +390,14 @@ TEST(PathSampling, FewLightsResampledFromASampleOfEachAgreeWithPowerPicksAndAreL
   const LightPicker picker = LightPicker::build(s);
   ASSERT_EQ(picker.pmf.size(), 4u);
   ASSERT_LT(picker.light_pmf(0), 0.05f);  // the spot: rarely picked by power
-  const SurfaceHit x{.position = vec3(0.1f, 0.0f, -0.05f),
-                     .normal = vec3(0, 1, 0),
-                     .geometric_normal = vec3(0, 1, 0),
-                     .albedo = floor.albedo,
-                     .f0 = floor.f0,
-                     .roughness = floor.roughness};
+  const SurfaceHit x = floor_point(vec3(0.1f, 0.0f, -0.05f), floor);
   const vec3 wo = glm::normalize(vec3(0.3f, 1.0f, 0.2f));
   const Estimate picked = estimate_direct(s, x, wo, LightStrategy::kMis, 100000, 1);
   const Estimate resampled = estimate_direct(s, x, wo, LightStrategy::kMis, 100000);
   const Estimate light = estimate_direct(s, x, wo, LightStrategy::kLightOnly, 100000);
+  expect_same_mean(resampled, picked, "picked by power");
+  expect_same_mean(resampled, light, "light sampling alone");
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(resampled.mean(k), picked.mean(k),
-                5.0 * std::hypot(picked.standard_error(k), resampled.standard_error(k)))
-        << "channel " << k;
-    EXPECT_NEAR(resampled.mean(k), light.mean(k),
-                5.0 * std::hypot(resampled.standard_error(k), light.standard_error(k)))
-        << "channel " << k;
     EXPECT_LT(resampled.standard_error(k), 0.25 * picked.standard_error(k)) << "channel " << k;
     EXPECT_LT(resampled.standard_error(k), 0.01 * resampled.mean(k)) << "too noisy to test";
   }
