@@ -747,6 +747,62 @@ TEST(Denoiser, ReprojectionFollowsTheSurfaceAndDetectsDisocclusion) {
   }
 }
 
+// In motion the light is remodulated with an albedo factor and emission averaged with last
+// frame's where the pixel saw the same surface (temporal_blend; modulation_alpha 0.5):
+// jittered frames see other texels of a texture, and two of them come closer to the pixel's
+// average than one. Where last frame saw no part of this surface (out of view, or another depth)
+// the pixel takes this frame's alone, and modulation_alpha 1 turns the averaging off.
+TEST(Denoiser, InMotionTheAlbedoAndEmissionAreAveragedOnTheSameSurface) {
+  const int w = 12, h = 6;
+  auto albedo = [](int x, int y, int frame) {
+    return vec3(0.2f + 0.05f * float(x), 0.3f + 0.1f * float(y), frame == 0 ? 0.9f : 0.4f);
+  };
+  auto emission = [](int x, int, int frame) {
+    return x % 3 == 0 ? vec3(frame == 0 ? 4.0f : 2.0f, 1.0f, 0.0f) : vec3(0.0f);
+  };
+  const float light = 0.7f;
+  // The camera moved two pixels: this frame's pixel x saw its surface at x - 2. Last frame the
+  // wall at [6, 8) x [2, 4) (of last frame's pixels) was at another depth.
+  const ivec2 shift(2, 0);
+  GBuffer before = plane(w, h), after = plane(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = before.view().index(x, y);
+      before.albedo[i] = albedo(x - shift.x, y, 0);
+      before.emission[i] = emission(x - shift.x, y, 0);
+      if (x >= 6 && x < 8 && y >= 2 && y < 4) before.depth[i] = 2.0f;
+      after.albedo[i] = albedo(x - 2 * shift.x, y, 1);
+      after.emission[i] = emission(x - 2 * shift.x, y, 1);
+      after.motion[i] = vec2(shift);
+    }
+  auto frame_of = [&](const GBuffer& g) {
+    return image_of(w, h, [&](int x, int y) {
+      const size_t i = g.view().index(x, y);
+      return light * g.albedo[i] + g.emission[i];
+    });
+  };
+  for (const float alpha : {0.5f, 1.0f}) {
+    Denoiser d;
+    d.settings().spatial = false;
+    d.settings().modulation_alpha = alpha;
+    run(d, before, HistoryState::kReset, frame_of(before));
+    const Image out = run(d, after, HistoryState::kCameraMoved, frame_of(after)).direct;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::string where =
+            std::to_string(x) + "," + std::to_string(y) + " alpha " + std::to_string(alpha);
+        const size_t i = after.view().index(x, y);
+        const int sx = x - shift.x;
+        const bool kept = sx >= 0 && !(sx >= 6 && sx < 8 && y >= 2 && y < 4);
+        const size_t q = before.view().index(std::max(sx, 0), y);
+        const float a = kept ? alpha : 1.0f;
+        const vec3 f = before.albedo[q] + (after.albedo[i] - before.albedo[q]) * a;
+        const vec3 e = before.emission[q] + (after.emission[i] - before.emission[q]) * a;
+        expect_near_rel(out.at(x, y), light * f + e, 1e-5f, where);
+      }
+  }
+}
+
 // Sub-pixel motion reads last frame's light bilinearly: a ramp is interpolated exactly.
 TEST(Denoiser, SubPixelMotionInterpolatesBilinearly) {
   const int w = 16, h = 8;
@@ -1125,10 +1181,10 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
     EXPECT_NE(p.name.rfind("denoise", 0), 0u) << p.name << ": no stage prefix, every name is short";
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
-  for (const char* name :
-       {"temporal", "spatial", "atrous_iterations", "indirect_iterations", "indirect_resolution",
-        "sigma_luminance", "sigma_normal", "sigma_depth", "history_max", "accumulated_history",
-        "rest_atrous_frames", "clip_gamma", "depth_tolerance", "normal_tolerance"})
+  for (const char* name : {"temporal", "spatial", "atrous_iterations", "indirect_iterations",
+                           "indirect_resolution", "sigma_luminance", "sigma_normal", "sigma_depth",
+                           "history_max", "accumulated_history", "rest_atrous_frames", "clip_gamma",
+                           "modulation_alpha", "depth_tolerance", "normal_tolerance"})
     EXPECT_EQ(names.count(name), 1u) << name;
   d.params().set("atrous_iterations", "2");
   d.params().set("sigma_luminance", "8");
@@ -1138,6 +1194,7 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
   EXPECT_FALSE(d.settings().spatial);
   EXPECT_THROW(d.params().set("history_max", "0"), Error);
   EXPECT_THROW(d.params().set("normal_tolerance", "2"), Error);
+  EXPECT_THROW(d.params().set("modulation_alpha", "0"), Error);
 }
 
 TEST(Denoiser, DebugViewsShowHistoryMotionRawAndVariance) {

@@ -1,6 +1,7 @@
 // The temporal pass's reprojection kernels on random frames: the bilinear footprint at the
 // image's borders, and the CPU's eight-pixel reprojection (denoise_reproject_cpu.h) against the
-// per-pixel kernel every backend shares (denoise_temporal.h's reproject_moved).
+// per-pixel kernel every backend shares (denoise_temporal.h's reproject_moved), the light's
+// history and the modulation's alike.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +23,9 @@ struct RandomFrames {
   std::vector<float> depth;
   std::vector<vec3> normal;
   std::vector<uint32_t> mesh, primitive;
-  std::vector<float> prev_plane[14];  // depth, nx, ny, nz, eight history planes, length, object
+  // Depth, nx, ny, nz, eight history planes, length, object, the modulation's factor rgb and
+  // emission rgb.
+  std::vector<float> prev_plane[20];
   std::vector<uint32_t> prev_object;
   TemporalPass p;
 
@@ -52,7 +55,7 @@ struct RandomFrames {
       prev_plane[1][i] = nn.x;
       prev_plane[2][i] = nn.y;
       prev_plane[3][i] = nn.z;
-      for (int c = 4; c < 14; ++c) prev_plane[c][i] = 10.0f * u();
+      for (int c = 4; c < 20; ++c) prev_plane[c][i] = 10.0f * u();
       prev_object[i] = uint32_t(u() * 3.0f);
     }
     p.g.motion = motion.data();
@@ -65,6 +68,8 @@ struct RandomFrames {
                            prev_plane[3].data(), prev_object.data()};
     for (int c = 0; c < 8; ++c) p.prev.c[c] = prev_plane[4 + c].data();
     p.prev_length = prev_plane[12].data();
+    p.prev_rest = {{prev_plane[14].data(), prev_plane[15].data(), prev_plane[16].data()},
+                   {prev_plane[17].data(), prev_plane[18].data(), prev_plane[19].data()}};
     p.width = w;
     p.height = h;
     p.prev_width = pw;
@@ -134,10 +139,10 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
                                      std::tuple{16, 4, 2, 2}, std::tuple{24, 3, 50, 8}}) {
     RandomFrames f(w, h, pw, ph, uint64_t(w * 100 + pw));
     ASSERT_TRUE(reproject_eight_fits(f.p));
-    std::vector<float> planes(10 * size_t(w)), tap_planes(7 * size_t(w));
+    std::vector<float> planes(kReprojectedPlanes * size_t(w)), tap_planes(7 * size_t(w));
     std::vector<int> tap_q(static_cast<size_t>(w));
     ReprojectedRow row;
-    for (int c = 0; c < 10; ++c) row.v[c] = planes.data() + size_t(c) * size_t(w);
+    for (int c = 0; c < kReprojectedPlanes; ++c) row.v[c] = planes.data() + size_t(c) * size_t(w);
     const TapRow taps = TapRow::over(tap_q.data(), tap_planes.data(), size_t(w));
     int kept = 0, dropped = 0;
     for (int y = 0; y < h; ++y) {
@@ -160,6 +165,11 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
                       1e-5f * (1.0f + std::fabs(want.h.indirect[c])));
         }
         EXPECT_NEAR(got.length, want.length, 1e-5f * (1.0f + want.length));
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(got.factor[c], want.factor[c], 1e-5f * (1.0f + std::fabs(want.factor[c])));
+          EXPECT_NEAR(got.emission[c], want.emission[c],
+                      1e-5f * (1.0f + std::fabs(want.emission[c])));
+        }
       }
     }
     // The frames exercise both outcomes.

@@ -166,8 +166,14 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   prev_history_.fill_zero();
   prev_length_.resize(n);
   prev_length_.fill_zero();
-  for (Rgb* p : {&rest_factor_, &rest_emission_, &upsampled_[0], &upsampled_[1], &filter_direct_[0],
-                 &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
+  // (With keep_last, rest_* is last frame's modulation too: the next reprojection reads it.)
+  if (!keep_last) {
+    rest_factor_.resize(n);
+    rest_emission_.resize(n);
+  }
+  for (Rgb* p :
+       {&prev_rest_factor_, &prev_rest_emission_, &upsampled_[0], &upsampled_[1],
+        &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
     p->resize(n);
   for (auto* b : {&box_[0], &box_[1], &box_[2], &box_[3], &box_[4], &depth_slope_, &var_direct_,
                   &var_indirect_, &filter_var_direct_[0], &filter_var_direct_[1],
@@ -257,7 +263,15 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.s = temporal_settings;
     temporal.direct_region = frame.direct_region;
     const bool update_rest = rest || state == HistoryState::kReset;
+    // Reprojecting frames read last frame's modulation and write this frame's; at rest it is
+    // averaged in place (as Denoiser::run).
+    if (temporal_settings.reproject) {
+      std::swap(rest_factor_, prev_rest_factor_);
+      std::swap(rest_emission_, prev_rest_emission_);
+    }
     temporal.rest = {rest_factor_.view(), rest_emission_.view()};
+    temporal.prev_rest = {ConstRgbPlanes(prev_rest_factor_.view()),
+                          ConstRgbPlanes(prev_rest_emission_.view())};
     uint32_t* row_short = row_short_.data();
     if (has_indirect)
       update_rest ? device_denoise::temporal<true, true>(temporal, row_short)

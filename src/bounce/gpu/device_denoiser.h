@@ -55,7 +55,9 @@ class DeviceDenoiser {
   Surface surface_, prev_surface_, half_surface_;
   History history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;
-  Rgb rest_factor_, rest_emission_;
+  // The modulation remodulation reads (at rest averaged in place; while reprojecting last
+  // frame's are prev_*: TemporalPass::prev_rest).
+  Rgb rest_factor_, rest_emission_, prev_rest_factor_, prev_rest_emission_;
   DeviceBuffer<float> box_[5];
   DeviceBuffer<float> depth_slope_, var_direct_, var_indirect_;
   DeviceBuffer<uint32_t> row_short_;

@@ -119,7 +119,8 @@ using HistoryPlanes = HistoryPlanesT<false>;
 using ConstHistoryPlanes = HistoryPlanesT<true>;
 
 // The demodulation factor and the emission averaged over the frames at rest, so that jittered
-// frames, which see several surfaces in an edge pixel, converge to the average of what they saw.
+// frames, which see several surfaces in an edge pixel, converge to the average of what they saw;
+// in motion, over the last few frames (temporal_blend).
 template <bool kConst>
 struct RestPlanesT {
   RgbPlanesT<kConst> factor, emission;
@@ -198,22 +199,24 @@ BOUNCE_HD BOUNCE_LANE_INLINE void unrolled(F&& f) {
 
 struct RemodulatePass {
   ConstGBufferView g;
-  ConstRestPlanes rest;             // the averages, used at rest
+  // The albedo factor and emission to remodulate with: averaged over the frames at rest, and in
+  // motion over the last frames (denoise_temporal.h, temporal_blend).
+  ConstRestPlanes rest;
   ConstRgbPlanes direct, indirect;  // filtered
   vec3* out_direct = nullptr;
   vec3* out_indirect = nullptr;  // null without indirect light
 };
 
-// Multiplies pixel i's filtered light back by its albedo and adds the emission (at rest, kRest:
-// the averages); in motion, pixels without a surface keep what the techniques wrote.
+// Multiplies pixel i's filtered light back by its albedo factor and adds the emission (p.rest's);
+// at rest (kRest) every pixel, in motion only pixels with a surface (the others keep what the
+// techniques wrote).
 // Branch-free, so the CPU's loop vectorises.
 template <bool kIndirect, bool kRest>
 BOUNCE_HD BOUNCE_LANE_INLINE void remodulate_light(const RemodulatePass& p, size_t i, vec3 direct,
                                                    vec3 indirect) {
   // At rest every pixel holds an average, those without a surface this frame too.
   const bool averaged = p.g.hit(i) | kRest;
-  const vec3 f = kRest ? p.rest.factor.get(i) : demodulation_factor(p.g.albedo[i]);
-  const vec3 e = kRest ? p.rest.emission.get(i) : p.g.emission[i];
+  const vec3 f = p.rest.factor.get(i), e = p.rest.emission.get(i);
   p.out_direct[i] = pick(averaged, direct * f + e, p.out_direct[i]);
   if constexpr (kIndirect) p.out_indirect[i] = pick(averaged, indirect * f, p.out_indirect[i]);
 }

@@ -41,6 +41,7 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
   ts.clip_gamma = s.clip_gamma;
   ts.depth_tolerance = s.depth_tolerance;
   ts.normal_tolerance = s.normal_tolerance;
+  ts.modulation_alpha = s.modulation_alpha;
   return ts;
 }
 

@@ -133,12 +133,22 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
       no_hit, _mm256_cmp_ps(weight, _mm256_set1_ps(kMinHistoryWeight), _CMP_GE_OQ));
   const __m256 inv = _mm256_and_ps(_mm256_div_ps(_mm256_set1_ps(1.0f), weight), kept);
   _mm256_storeu_ps(row.v[9] + x, _mm256_and_ps(kept, _mm256_set1_ps(1.0f)));
-  // The history's eight planes, then the history length: ReprojectedRow's order.
-  for (int c = 0; c < 9; ++c) {
-    detail::load_taps(c < 8 ? p.prev.c[c] : p.prev_length, q, width, t);
+  // The history's eight planes, the history length, then the modulation's six planes:
+  // ReprojectedRow's order (past its plane 9, kept).
+  const float* planes[kReprojectedPlanes - 1];
+  for (int c = 0; c < 8; ++c) planes[c] = p.prev.c[c];
+  planes[8] = p.prev_length;
+  const RgbPlanesT<true> modulation[2] = {p.prev_rest.factor, p.prev_rest.emission};
+  for (int m = 0; m < 2; ++m) {
+    planes[9 + 3 * m] = modulation[m].r;
+    planes[10 + 3 * m] = modulation[m].g;
+    planes[11 + 3 * m] = modulation[m].b;
+  }
+  for (int c = 0; c < kReprojectedPlanes - 1; ++c) {
+    detail::load_taps(planes[c], q, width, t);
     __m256 s = _mm256_mul_ps(w[0], t[0]);
     for (int k = 1; k < 4; ++k) s = _mm256_fmadd_ps(w[k], t[k], s);
-    _mm256_storeu_ps(row.v[c] + x, _mm256_mul_ps(s, inv));
+    _mm256_storeu_ps(row.v[c < 9 ? c : c + 1] + x, _mm256_mul_ps(s, inv));
   }
 }
 

@@ -25,6 +25,8 @@ struct TemporalSettings {
   float clip_gamma = 1.0f;
   float depth_tolerance = 0.0f;
   float normal_tolerance = 0.0f;
+  // In motion, this frame's weight in the modulation (DenoiseSettings::modulation_alpha).
+  float modulation_alpha = 1.0f;
 
   // Whether this frame's history is clipped (there is one, and the world changed).
   BOUNCE_HD bool clipped() const { return history && clip; }
@@ -44,7 +46,10 @@ struct TemporalPass {
   float* var_direct = nullptr;
   float* var_indirect = nullptr;
   float* length = nullptr;
-  RestPlanes rest;  // updated in place at rest and after a reset
+  // The modulation remodulation reads (RestPlanes): updated in place at rest and after a reset;
+  // in motion this frame's, blended with prev_rest, last frame's, reprojected with the history.
+  RestPlanes rest;
+  ConstRestPlanes prev_rest;  // prev_width x prev_height; read only where reprojecting
   int width = 0;
   int height = 0;
   // The size of the previous frame's planes (prev_*): the viewer's resolution scaler changes
@@ -70,6 +75,8 @@ struct Reprojected {
   HistoryTexel h;
   float length = 0.0f;
   bool kept = false;
+  // In motion, last frame's modulation (TemporalPass::prev_rest) through the same taps.
+  vec3 factor{0.0f}, emission{0.0f};
 };
 // The bilinear footprint of this frame's pixel (x, y) in the last frame: a 2 x 2 block of its
 // pixels from pixel q (row-major in the last frame) and each one's bilinear weight, in the order
@@ -144,12 +151,16 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, 
     weight += w;
     r.h.add(w, p.prev.get(size_t(q)));
     r.length += w * p.prev_length[q];
+    r.factor += w * p.prev_rest.factor.get(size_t(q));
+    r.emission += w * p.prev_rest.emission.get(size_t(q));
   });
   r.kept = (weight >= kMinHistoryWeight) & p.g.hit(i);
   const float inv = r.kept ? 1.0f / weight : 0.0f;
   r.h.direct *= inv;
   r.h.indirect *= inv;
   r.length *= inv;
+  r.factor *= inv;
+  r.emission *= inv;
   return r;
 }
 
@@ -285,8 +296,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
 
 // A row of temporal_history's results as planes, where the CPU's first half leaves them for the
 // second, whose loop then vectorises.
+inline constexpr int kReprojectedPlanes = 16;
 struct ReprojectedRow {
-  float* v[10] = {};  // direct rgb and mean squared luminance, the same of indirect, length, kept
+  // Direct rgb and mean squared luminance, the same of indirect, length, kept, the modulation's
+  // factor rgb and emission rgb.
+  float* v[kReprojectedPlanes] = {};
 
   BOUNCE_HD void store(int x, const Reprojected& r) const {
     for (int c = 0; c < 4; ++c) {
@@ -295,6 +309,10 @@ struct ReprojectedRow {
     }
     v[8][x] = r.length;
     v[9][x] = r.kept ? 1.0f : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      v[10 + c][x] = r.factor[c];
+      v[13 + c][x] = r.emission[c];
+    }
   }
 };
 
@@ -305,6 +323,8 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected load_reprojected(const float* const* v,
   r.h.indirect = vec4(v[4][x], v[5][x], v[6][x], v[7][x]);
   r.length = v[8][x];
   r.kept = v[9][x] != 0.0f;
+  r.factor = vec3(v[10][x], v[11][x], v[12][x]);
+  r.emission = vec3(v[13][x], v[14][x], v[15][x]);
   return r;
 }
 
@@ -365,6 +385,14 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
     const vec3 ind = (vec3(h_i) * f0 * (1.0f - alpha_i) + in_i * alpha_i) * inv_f1;
     next_d = vec4(d, next_d.w);
     next_i = vec4(ind, next_i.w);
+  } else {
+    // In motion the modulation is blended like the light, but with a fixed weight: jittered
+    // frames each see one texel of a texture, or one side of an emitter's edge, in a pixel, and
+    // a short average of them comes closer to the pixel's average (docs/benchmarks.md, stop 51).
+    // Where the history is not kept (a disocclusion, or none) the pixel takes this frame's.
+    const float a = kept ? p.s.modulation_alpha : 1.0f;
+    p.rest.factor.set(i, r.factor + (factor - r.factor) * a);
+    p.rest.emission.set(i, r.emission + (emission - r.emission) * a);
   }
   // (Without a surface and history, next is this frame's light: what a later frame at rest
   // averages with. In motion the filter's result there is not used: remodulation keeps what the

@@ -249,14 +249,15 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
         any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, i, same));
       }
     } else {
+      constexpr int kPlanes = denoise::kReprojectedPlanes;
       thread_local std::vector<float> row_planes;
-      row_planes.resize(10 * size_t(p.width));
+      row_planes.resize(kPlanes * size_t(p.width));
       denoise::ReprojectedRow row;
-      for (int c = 0; c < 10; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
+      for (int c = 0; c < kPlanes; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
       reproject_row(p, y, row);
       if (p.s.clip) clip_row<kIndirect>(p, demodulated, y, row);
-      const float* v[10];
-      for (int c = 0; c < 10; ++c) v[c] = row.v[c];
+      const float* v[kPlanes];
+      for (int c = 0; c < kPlanes; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x)
         any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
@@ -596,7 +597,9 @@ struct Denoiser::Buffers {
   SurfaceBuffers surface, prev_surface;
   Planes<8> history, prev_history;  // denoise::HistoryPlanes
   std::vector<float> prev_length;   // last run's history_length_
-  Planes<6> rest;                   // RestPlanes: factor rgb, emission rgb
+  // RestPlanes: factor rgb, emission rgb; at rest updated in place, while reprojecting last
+  // frame's are prev_rest (TemporalPass::prev_rest).
+  Planes<6> rest, prev_rest;
   // This frame's demodulated light where the history is clipped (denoise::store_demodulated).
   Planes<denoise::kDemodulatedPlanes> demodulated;
   Planes<5> box;  // its moments summed along rows, for the spatial variance
@@ -634,7 +637,9 @@ struct Denoiser::Buffers {
     prev_surface.resize(n);
     prev_history.resize(n);
     prev_length.assign(n, 0.0f);
-    rest.resize(n);
+    // (With keep_last, `rest` is last frame's modulation too: the next reprojection's prev_rest.)
+    if (!keep_last) rest.resize(n);
+    prev_rest.resize(n);
     box.resize(n);
     depth_slope.assign(n, 0.0f);
     row_short.assign(size_t(h), 0);
@@ -719,6 +724,9 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
                   "while the camera moves");
   params_.add_float("clip_gamma", &s.clip_gamma, 0.0, 100.0,
                     "history clamp half-width in standard deviations when the world changed");
+  params_.add_float("modulation_alpha", &s.modulation_alpha, 0.01, 1.0,
+                    "in motion, this frame's weight in the albedo and emission light is "
+                    "remodulated with (1: this frame's alone)");
   params_.add_float("depth_tolerance", &s.depth_tolerance, 0.0, 10.0,
                     "reprojection: largest relative depth difference of the same surface");
   params_.add_float("normal_tolerance", &s.normal_tolerance, -1.0, 1.0,
@@ -781,6 +789,9 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Rest averages start at a reset (the first frame of a still; unless no frame will continue
   // its history) and continue at rest.
   const bool update_rest = rest || (state == HistoryState::kReset && frame.history_continues);
+  // Reprojecting frames read last frame's modulation (prev_rest) and write this frame's; at rest
+  // it is averaged in place.
+  if (temporal_settings.reproject) std::swap(b.rest, b.prev_rest);
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;
@@ -802,6 +813,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.s = temporal_settings;
     temporal.direct_region = frame.direct_region;
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
+    temporal.prev_rest = {std::as_const(b.prev_rest).rgb(0), std::as_const(b.prev_rest).rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     if (temporal_settings.history && temporal_settings.clip) {
       // (Sized on the first frame that needs them: a still or camera-only scene never does.)

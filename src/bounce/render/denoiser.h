@@ -70,6 +70,11 @@ struct DenoiseSettings {
   // neighbourhood of one noisy frame has a wide sigma, and a wider box kept stale light
   // (docs/benchmarks.md, stop 48).
   float clip_gamma = 0.5f;
+  // In motion, this frame's weight in the albedo and emission that light is remodulated with,
+  // blended with last frame's where the pixel sees the same surface (temporal_blend); 1:
+  // this frame's alone. Measured on the level's walk: 0.5 came closest to the references, 0.25
+  // and 0.8 less close (docs/benchmarks.md, stop 51).
+  float modulation_alpha = 0.5f;
   float depth_tolerance = 0.05f;  // disocclusion: relative depth difference
   float normal_tolerance = 0.9f;  // disocclusion: minimum normal agreement (cosine)
 
