@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bounce/core/error.h"
@@ -679,6 +680,35 @@ TEST(Denoiser, HistoryIsCappedWhileTheCameraMoves) {
   EXPECT_NEAR(out.direct.at(1, 1).x, expected, 1e-5f);
 }
 
+// While the world changes the cap is changing_history_max (at most history_max), and each frame
+// that only the camera moves in gets history_max again: a moving light's history stays short.
+TEST(Denoiser, HistoryIsCappedShorterWhileTheWorldChanges) {
+  const GBuffer g = plane(4, 4);
+  for (const auto& [history_max, changing, cap] :
+       {std::tuple{6, 2, 2}, std::tuple{6, 4, 4}, std::tuple{3, 5, 3}}) {
+    SCOPED_TRACE(std::to_string(history_max) + " " + std::to_string(changing));
+    Denoiser d;
+    d.settings().spatial = false;
+    d.settings().history_max = history_max;
+    d.settings().changing_history_max = changing;
+    float expected = 0.0f, length = 0.0f;
+    Output out;
+    // Eight frames of a world that changes, then eight of camera moves.
+    for (int k = 0; k < 16; ++k) {
+      const float v = float(k % 5);
+      const HistoryState state = k == 0  ? HistoryState::kReset
+                                 : k < 8 ? HistoryState::kWorldChanged
+                                         : HistoryState::kCameraMoved;
+      out = run(d, g, state, image_of(4, 4, [&](int, int) { return vec3(v); }));
+      length = k == 0 ? 0.0f : std::min(length + 1.0f, float(k < 8 ? cap : history_max));
+      EXPECT_EQ(d.history_length()[5], length) << "frame " << k;
+      // (A uniform frame's neighbourhood clips the history to its own value.)
+      expected = k < 8 ? v : expected + (v - expected) / (length + 1.0f);
+    }
+    EXPECT_NEAR(out.direct.at(1, 1).x, expected, 1e-4f);
+  }
+}
+
 // The world as the camera sees it: a slanted wall (object 0) whose texel (u, v) shows at pixel
 // (u + shift.x, v + shift.y).
 struct World {
@@ -1181,10 +1211,11 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
     EXPECT_NE(p.name.rfind("denoise", 0), 0u) << p.name << ": no stage prefix, every name is short";
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
-  for (const char* name : {"temporal", "spatial", "atrous_iterations", "indirect_iterations",
-                           "indirect_resolution", "sigma_luminance", "sigma_normal", "sigma_depth",
-                           "history_max", "accumulated_history", "rest_atrous_frames", "clip_gamma",
-                           "modulation_alpha", "depth_tolerance", "normal_tolerance"})
+  for (const char* name :
+       {"temporal", "spatial", "atrous_iterations", "indirect_iterations", "indirect_resolution",
+        "sigma_luminance", "sigma_normal", "sigma_depth", "history_max", "changing_history_max",
+        "accumulated_history", "rest_atrous_frames", "clip_gamma", "modulation_alpha",
+        "depth_tolerance", "normal_tolerance"})
     EXPECT_EQ(names.count(name), 1u) << name;
   d.params().set("atrous_iterations", "2");
   d.params().set("sigma_luminance", "8");
@@ -1193,6 +1224,7 @@ TEST(Denoiser, ParametersHaveShortNamesAndBounds) {
   EXPECT_EQ(d.settings().sigma_luminance, 8.0f);
   EXPECT_FALSE(d.settings().spatial);
   EXPECT_THROW(d.params().set("history_max", "0"), Error);
+  EXPECT_THROW(d.params().set("changing_history_max", "0"), Error);
   EXPECT_THROW(d.params().set("normal_tolerance", "2"), Error);
   EXPECT_THROW(d.params().set("modulation_alpha", "0"), Error);
 }

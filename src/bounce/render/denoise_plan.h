@@ -26,6 +26,7 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
   const bool rest = denoise_at_rest(s, state);
   TemporalSettings ts;
   ts.cap_direct = rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
+  ts.cap_clipped = std::min(ts.cap_direct, float(std::max(s.changing_history_max, 1)));
   // Indirect light a technique accumulates itself already holds its history; the denoiser adds a
   // short one only while the camera moves (the technique then re-gathers kept photons from a new
   // view, at a lower resolution). At rest and after a world change (where the technique
@@ -37,6 +38,8 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
   ts.reproject =
       resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;
   ts.clip = state == HistoryState::kWorldChanged;
+  // Indirect light's history is clipped everywhere the world changed.
+  if (ts.clip) ts.cap_indirect = std::min(ts.cap_indirect, ts.cap_clipped);
   ts.rest_continues = rest && rest_valid && !resized;
   ts.clip_gamma = s.clip_gamma;
   ts.depth_tolerance = s.depth_tolerance;

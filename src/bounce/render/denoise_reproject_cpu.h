@@ -134,8 +134,9 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
   const __m256 inv = _mm256_and_ps(_mm256_div_ps(_mm256_set1_ps(1.0f), weight), kept);
   _mm256_storeu_ps(row.v[9] + x, _mm256_and_ps(kept, _mm256_set1_ps(1.0f)));
   // The history's eight planes, the history length, then the modulation's six planes:
-  // ReprojectedRow's order (past its plane 9, kept).
-  const float* planes[kReprojectedPlanes - 1];
+  // ReprojectedRow's order (past its plane 9, kept; its last, clipped, is the clip's).
+  constexpr int kTapped = 15;
+  const float* planes[kTapped];
   for (int c = 0; c < 8; ++c) planes[c] = p.prev.c[c];
   planes[8] = p.prev_length;
   const RgbPlanesT<true> modulation[2] = {p.prev_rest.factor, p.prev_rest.emission};
@@ -144,7 +145,7 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
     planes[10 + 3 * m] = modulation[m].g;
     planes[11 + 3 * m] = modulation[m].b;
   }
-  for (int c = 0; c < kReprojectedPlanes - 1; ++c) {
+  for (int c = 0; c < kTapped; ++c) {
     detail::load_taps(planes[c], q, width, t);
     __m256 s = _mm256_mul_ps(w[0], t[0]);
     for (int k = 1; k < 4; ++k) s = _mm256_fmadd_ps(w[k], t[k], s);

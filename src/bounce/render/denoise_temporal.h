@@ -21,7 +21,11 @@ struct TemporalSettings {
   bool clip = false;       // clamp the history to this frame's neighbourhood (world changed)
   bool rest_continues = false;  // at rest after a reset or rest: the rest averages continue
   float cap_direct = 0.0f;      // history length cap for direct light (infinite at rest)
-  float cap_indirect = 0.0f;    // and for indirect light
+  // The cap where direct light's history is clipped (the world changed there): a long average
+  // of history clipped to one noisy frame's box lags a moving light (DenoiseSettings::
+  // changing_history_max).
+  float cap_clipped = 0.0f;
+  float cap_indirect = 0.0f;  // and for indirect light
   float clip_gamma = 1.0f;
   float depth_tolerance = 0.0f;
   float normal_tolerance = 0.0f;
@@ -75,6 +79,7 @@ struct Reprojected {
   HistoryTexel h;
   float length = 0.0f;
   bool kept = false;
+  bool clipped = false;  // direct light's history clipped to this frame's neighbourhood
   // In motion, last frame's modulation (TemporalPass::prev_rest) through the same taps.
   vec3 factor{0.0f}, emission{0.0f};
 };
@@ -229,8 +234,8 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
   Reprojected r = reproject(p, x, y, i);
   if (r.kept && p.s.clip) {
     const ColorBoxes boxes = neighbourhood(p, x, y);
-    if (p.direct_region.contains(p.g.position[i]))
-      clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
+    r.clipped = p.direct_region.contains(p.g.position[i]);
+    if (r.clipped) clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
     if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
   }
   return r;
@@ -296,10 +301,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
 
 // A row of temporal_history's results as planes, where the CPU's first half leaves them for the
 // second, whose loop then vectorises.
-inline constexpr int kReprojectedPlanes = 16;
+inline constexpr int kReprojectedPlanes = 17;
 struct ReprojectedRow {
   // Direct rgb and mean squared luminance, the same of indirect, length, kept, the modulation's
-  // factor rgb and emission rgb.
+  // factor rgb and emission rgb, clipped.
   float* v[kReprojectedPlanes] = {};
 
   BOUNCE_HD void store(int x, const Reprojected& r) const {
@@ -313,6 +318,7 @@ struct ReprojectedRow {
       v[10 + c][x] = r.factor[c];
       v[13 + c][x] = r.emission[c];
     }
+    v[16][x] = r.clipped ? 1.0f : 0.0f;
   }
 };
 
@@ -325,6 +331,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected load_reprojected(const float* const* v,
   r.kept = v[9][x] != 0.0f;
   r.factor = vec3(v[10][x], v[11][x], v[12][x]);
   r.emission = vec3(v[13][x], v[14][x], v[15][x]);
+  r.clipped = v[16][x] != 0.0f;
   return r;
 }
 
@@ -360,7 +367,8 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   // At rest (kRest) every pixel averages its frames, those without a surface too.
   const bool averaged = hit | kRest;
   const bool kept = averaged & r.kept;
-  const float n = pick(kept, glm::min(r.length + 1.0f, p.s.cap_direct), 0.0f);
+  const float cap = r.clipped ? p.s.cap_clipped : p.s.cap_direct;
+  const float n = pick(kept, glm::min(r.length + 1.0f, cap), 0.0f);
   const float alpha = 1.0f / (n + 1.0f);
   const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
   // This frame as a texel, blended in: colour, squared luminance.

@@ -169,12 +169,15 @@ void clip_row_where(const denoise::TemporalPass& p, const float* const* demodula
   }
   float* v[8];
   for (int c = 0; c < 8; ++c) v[c] = row.v[c];
+  float* clipped = row.v[16];
   const float gamma = p.s.clip_gamma;
   auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
     const denoise::ColorBoxes boxes =
         denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
-    clip_entry(v, x, boxes.direct, gamma, kEverywhere || inside[x] != 0.0f);
+    const bool clip_direct = kEverywhere || inside[x] != 0.0f;
+    clip_entry(v, x, boxes.direct, gamma, clip_direct);
     if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma, true);
+    clipped[x] = clip_direct ? 1.0f : 0.0f;
   };
   row_loop(
       p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
@@ -255,7 +258,10 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       denoise::ReprojectedRow row;
       for (int c = 0; c < kPlanes; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
       reproject_row(p, y, row);
-      if (p.s.clip) clip_row<kIndirect>(p, demodulated, y, row);
+      if (p.s.clip)
+        clip_row<kIndirect>(p, demodulated, y, row);
+      else
+        std::fill_n(row.v[16], p.width, 0.0f);
       const float* v[kPlanes];
       for (int c = 0; c < kPlanes; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
@@ -719,6 +725,10 @@ Denoiser::Denoiser() : buffers_(std::make_unique<Buffers>()) {
                     "depth edge-stopping, relative to the local depth slope");
   params_.add_int("history_max", &s.history_max, 1, 4096,
                   "frames of history a pixel keeps while anything moves");
+  params_.add_int("changing_history_max", &s.changing_history_max, 1, 4096,
+                  "the same where the world changed and the history is clipped (direct light "
+                  "where the lights' change reached, indirect light everywhere; at most "
+                  "history_max)");
   params_.add_int("accumulated_history", &s.accumulated_history, 1, 4096,
                   "frames of history for indirect light the technique accumulates itself, "
                   "while the camera moves");

@@ -62,6 +62,14 @@ struct DenoiseSettings {
   float sigma_normal = 128.0f;  // normal edge-stopping exponent
   float sigma_depth = 1.0f;     // depth edge-stopping, relative to the local depth gradient
   int history_max = 32;         // frames of history a pixel keeps while anything moves
+  // The same where the world changed (kWorldChanged) and the history is clipped to this frame's
+  // neighbourhood: direct light where the change of lights reached (everywhere unless only spot
+  // lights changed), indirect light everywhere; at most history_max. A long average of history
+  // clipped to one noisy frame's box lags the moving light and blurs what it reprojects: against
+  // path-traced references of the level's flashlight walk at 30 fps, 2 frames scored MSE8
+  // 31.3 / 7.6 / 58.7 at 1, 2 and 3 s where 32 scored 54.3 / 18.7 / 67.5, and the dynamic
+  // Cornell box and ball came a little closer too (docs/benchmarks.md, stop 52).
+  int changing_history_max = 2;
   int accumulated_history = 4;  // the same, while the camera moves, for indirect light a
                                 // technique accumulates itself (else 1)
   // Variance clipping box half-width in sigmas (world changes). Against path-traced references of
