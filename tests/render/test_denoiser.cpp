@@ -248,7 +248,7 @@ TEST(Denoiser, HalfResolutionDirectLightOnlyWhileTheHistoryIsShort) {
 // While the world changes (a flashlight carried through a level) the history is clipped to each
 // frame's neighbourhood, frame after frame, and stays about as noisy as a short one: direct light
 // is filtered at half resolution then too, long after the last reset, unless half_direct_frames
-// turns half resolution off.
+// turns half resolution off, and with every pass (after a reset, one fewer).
 TEST(Denoiser, HalfResolutionDirectLightWhileTheWorldChanges) {
   DenoiseSettings s;
   s.half_direct_frames = 4;
@@ -257,10 +257,18 @@ TEST(Denoiser, HalfResolutionDirectLightWhileTheWorldChanges) {
     const denoise::AtrousPlan p =
         denoise::atrous_plan(s, true, true, height, rest_frames, long_ago, clipped);
     EXPECT_EQ(p.direct_half, clipped);
-    EXPECT_EQ(p.direct_iterations, clipped ? s.atrous_iterations - 1 : s.atrous_iterations);
+    EXPECT_EQ(p.direct_iterations, s.atrous_iterations);
     // (Every pixel's history is long: the spatial variance stays at full resolution.)
     EXPECT_FALSE(p.half_variance);
   }
+  const denoise::AtrousPlan after_reset =
+      denoise::atrous_plan(s, true, true, height, rest_frames, 1, false);
+  EXPECT_TRUE(after_reset.direct_half);
+  EXPECT_EQ(after_reset.direct_iterations, s.atrous_iterations - 1);
+  const denoise::AtrousPlan changing_after_reset =
+      denoise::atrous_plan(s, true, true, height, rest_frames, 1, true);
+  EXPECT_TRUE(changing_after_reset.direct_half);
+  EXPECT_EQ(changing_after_reset.direct_iterations, s.atrous_iterations);
   s.half_direct_frames = 0;
   EXPECT_FALSE(
       denoise::atrous_plan(s, true, true, height, rest_frames, long_ago, true).direct_half);

@@ -80,10 +80,13 @@ inline AtrousPlan atrous_plan(const DenoiseSettings& s, bool spatial, bool has_i
   // full resolution) at a quarter of the cost per pass. So does a history clipped to this
   // frame's noisy neighbourhood, frame after frame while the world changes (a flashlight carried
   // through a level): there the half-resolution passes measured closer to the reference, not only
-  // faster (docs/benchmarks.md, stop 47).
+  // faster (docs/benchmarks.md, stop 47). There they keep every pass, reaching twice as far: with
+  // the clipped history at most two frames long (changing_history_max) the light is about one
+  // frame's, and the pass more brought the level's walk closer at a millisecond's cost at
+  // 1280x720 (docs/benchmarks.md, stop 52).
   p.direct_half = spatial && p.direct_iterations > 0 && s.half_direct_frames > 0 &&
                   (history_frames < s.half_direct_frames || clipped);
-  if (p.direct_half) p.direct_iterations = std::max(p.direct_iterations - 1, 1);
+  if (p.direct_half && !clipped) p.direct_iterations = std::max(p.direct_iterations - 1, 1);
   p.indirect_iterations =
       spatial && has_indirect ? indirect_iterations_for(s.indirect_iterations, height) : 0;
   if (p.indirect_iterations > 1 && s.rest_indirect_frames > 0 &&
