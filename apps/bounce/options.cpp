@@ -59,6 +59,7 @@ FrameSettings FrameOptions::settings() const {
   s.seed = seed;
   s.denoise = denoise;
   s.raster_primary = !trace_primary;
+  s.moving_lights_apart = !moving_lights_in_history;
   return s;
 }
 
@@ -147,6 +148,10 @@ void add_frame_options(CLI::App& command, FrameOptions& o, bool scene_required) 
                    "Find each pixel's surface with a traced primary ray instead of rasterising "
                    "the triangles, which the renderer does where it pays (16 or more pixels a "
                    "triangle); the same surfaces up to rounding, for comparison");
+  command.add_flag("--moving-lights-in-history", o.moving_lights_in_history,
+                   "Average the light of moving point and spot lights (a carried flashlight) "
+                   "into the denoiser's history like the rest, instead of shading them apart "
+                   "with a shadow ray each and adding them after the denoiser; for comparison");
   command.add_option("--at", o.at, "Animated scenes: the animation time to pose the scene at, s")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();

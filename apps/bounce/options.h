@@ -41,6 +41,8 @@ struct FrameOptions {
   // metres across need hundreds to a thousand).
   float flashlight_intensity = 3.0f;
   bool trace_primary = false;  // --trace-primary: a traced ray per pixel, not the raster
+  // --moving-lights-in-history: moved lights' light averaged with the rest (for comparison)
+  bool moving_lights_in_history = false;
 
   FrameSettings settings() const;
   // The denoiser's parameters: its defaults and the --param assignments that name them.

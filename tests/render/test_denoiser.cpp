@@ -717,6 +717,45 @@ TEST(Denoiser, HistoryIsCappedShorterWhileTheWorldChanges) {
   }
 }
 
+// Exact light (DenoiseFrame::exact: a moving spot's, shaded apart) joins the emission: a beam
+// moving a pixel a frame across a textured plane shows where it is, its history clamped to the
+// range of this frame's light around each pixel, demodulated: inside the beam and well outside
+// it exactly this frame's light; only at its two edges, where the range holds both lit and unlit
+// light, are last frame's and this frame's averaged (what antialiases a jittered edge).
+TEST(Denoiser, ExactLightIsClampedToItsNeighbourhood) {
+  const int w = 24, h = 6, beam = 8;
+  GBuffer g = plane(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) g.albedo[g.view().index(x, y)] = vec3(0.3f + 0.1f * float(x % 5));
+  Denoiser d;
+  d.settings().spatial = false;
+  const Image direct = image_of(w, h, [](int, int) { return vec3(0.0f); });
+  Image out;
+  int first = 0;
+  for (int k = 0; k < 6; ++k) {
+    first = 2 + k;
+    const Image exact = image_of(w, h, [&](int x, int y) {
+      return x >= first && x < first + beam ? 2.0f * g.albedo[g.view().index(x, y)] : vec3(0.0f);
+    });
+    StageTimes times;
+    out = direct;
+    DenoiseFrame frame{g, k == 0 ? HistoryState::kReset : HistoryState::kWorldChanged, false,
+                       times};
+    frame.exact = &exact;
+    d.run(frame, out, nullptr);
+    for (int x = 0; x < w; ++x) {
+      const vec3 want = exact.at(x, 2);
+      if (k > 0 && (x == first - 1 || x == first + beam - 1)) {
+        // Half last frame's, half this frame's (modulation_alpha 0.5): one lit, one not.
+        expect_near_rel(out.at(x, 2), 0.5f * 2.0f * g.albedo[g.view().index(x, 2)], 1e-5f,
+                        "edge pixel " + std::to_string(x));
+        continue;
+      }
+      expect_near_rel(out.at(x, 2), want, 1e-5f, "pixel " + std::to_string(x));
+    }
+  }
+}
+
 // The world as the camera sees it: a slanted wall (object 0) whose texel (u, v) shows at pixel
 // (u + shift.x, v + shift.y).
 struct World {

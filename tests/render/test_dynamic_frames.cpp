@@ -6,6 +6,7 @@
 
 #include "bounce/core/color.h"
 #include "bounce/eval/render_image.h"
+#include "bounce/render/light_change_region.h"
 #include "bounce/render/renderer.h"
 #include "bounce/scene/load.h"
 #include "bounce/techniques/registry.h"
@@ -203,6 +204,74 @@ TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
   const double e_single = error_away(single, reference, g);
   EXPECT_LT(e_turning, 1.2 * e_rest) << e_rest << " " << e_single;
   EXPECT_LT(e_turning, 0.25 * e_single) << e_rest << " " << e_single;
+}
+
+// A spot light sweeping across the Cornell box's left wall under a still camera, frame after
+// frame: shaded apart (FrameSettings::moving_lights_apart), its beam in the displayed frame is
+// where the spot points now. Averaged into the denoiser's history with the other lights, the
+// history inside its cones is clipped and kept two frames, and the beam lags and smears.
+TEST(DynamicFrames, AMovingSpotIsShownWhereItIs) {
+  Scene scene = make_cornell();
+  const size_t spot = scene.lights.size();
+  const vec3 wall(-1.0f, 0.0f, 0.0f);
+  scene.lights.push_back(Light::spot(vec3(0.278f, 0.45f, 0.28f), wall, vec3(0.2f), 18.0f, 25.0f));
+  scene.derive();
+  FrameSettings settings = small_frame();
+  settings.width = settings.height = 64;
+  settings.light_samples = 1;
+  settings.accumulate = true;
+  settings.denoise = true;
+  const int frames = 16;
+  const auto aim = [&](int k) {
+    const float turn = glm::radians(-24.0f + 3.0f * float(k));
+    scene.lights[spot].direction =
+        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(wall, 0.0f));
+  };
+  const auto last_frame = [&](bool apart) {
+    aim(0);
+    auto tracer = make_embree_tracer(scene);
+    Renderer renderer(scene, *tracer, make_technique("direct"));
+    FrameSettings s = settings;
+    s.moving_lights_apart = apart;
+    for (int k = 0; k + 1 < frames; ++k) {
+      renderer.render(scene.camera, s);
+      aim(k + 1);
+      renderer.scene_changed(SceneChange{{}, true, false});
+    }
+    const Frame& f = renderer.render(scene.camera, s);
+    return std::pair<Image, GBuffer>(f.direct, f.gbuffer);
+  };
+  const auto [apart, g] = last_frame(true);
+  const auto [in_history, g_history] = last_frame(false);
+  // The last pose converged.
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_technique("direct"));
+  FrameSettings many = settings;
+  many.denoise = false;
+  many.light_samples = 256;
+  for (int k = 0; k < 7; ++k) renderer.render(scene.camera, many);
+  const Image reference = renderer.render(scene.camera, many).direct;
+  // Mean absolute luminance error where the beam is or was two frames before.
+  const Light now = scene.lights[spot];
+  aim(frames - 3);
+  const Light before = scene.lights[spot];
+  const auto in_beam = [&](const Light& l, vec3 p) {
+    return in_cone(p, l.position, glm::normalize(l.direction), l.cos_outer);
+  };
+  const auto error_on_wall = [&](const Image& image, const GBuffer& gb) {
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < gb.size(); ++i) {
+      if (!gb.hit(i) || !(in_beam(now, gb.position[i]) || in_beam(before, gb.position[i])))
+        continue;
+      sum += std::abs(luminance(image.pixels()[i]) - luminance(reference.pixels()[i]));
+      ++count;
+    }
+    EXPECT_GT(count, 100);
+    return sum / std::max(count, 1);
+  };
+  const double e_apart = error_on_wall(apart, g), e_history = error_on_wall(in_history, g_history);
+  EXPECT_LT(e_apart, 0.5 * e_history) << e_apart << " " << e_history;
 }
 
 }  // namespace

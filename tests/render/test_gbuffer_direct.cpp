@@ -56,8 +56,9 @@ void expect_fused_pass_equals_the_stages(const Scene& scene, bool rows, bool ras
   GBuffer g2;
   g2.resize(kWidth, kHeight);
   Image d2(kWidth, kHeight);
-  const GBufferAndDirect fused = build_gbuffer_and_direct(
-      data.view(), picker.view(), *tracer, camera, subpixel, settings, g2, d2, {}, visibility);
+  const GBufferAndDirect fused =
+      build_gbuffer_and_direct(data.view(), picker.view(), *tracer, camera, subpixel, settings, g2,
+                               d2, nullptr, {}, visibility);
 
   EXPECT_EQ(fused.primary_rays, primary);
   EXPECT_EQ(fused.shadow_rays, shadow);

@@ -89,6 +89,66 @@ TEST(LightChangeRegion, OtherChangesReachEverywhere) {
   EXPECT_TRUE(light_change_region(records({kSpot, kSpot, kSpot}), records({t, t, t})).everywhere);
 }
 
+// The renderer's moved lights (moved_punctual_lights): point, spot and directional lights that
+// differ, at most LightsApart::kMax of them, none after a change of the light count.
+TEST(LightsApart, AreThePunctualLightsThatMoved) {
+  const Light t = turned(kSpot, vec3(0.0f, -1.0f, 1.0f));
+  Light moved_point = kStill;
+  moved_point.position.x += 0.1f;
+  const Light ball = Light::sphere(vec3(0.0f), 0.1f, vec3(1.0f));
+  Light moved_ball = ball;
+  moved_ball.position.y += 0.1f;
+  const LightsApart a = moved_punctual_lights(records({kStill, kSpot, ball, kSpot}),
+                                              records({moved_point, kSpot, moved_ball, t}));
+  ASSERT_EQ(a.count, 2);
+  EXPECT_EQ(a.index[0], 0u);
+  EXPECT_EQ(a.index[1], 3u);
+  EXPECT_EQ(moved_punctual_lights(records({kSpot}), records({kSpot})).count, 0);
+  EXPECT_EQ(moved_punctual_lights(records({kSpot}), records({kSpot, t})).count, 0);
+  EXPECT_EQ(
+      moved_punctual_lights(records({kStill, kSpot, kSpot}), records({moved_point, t, t})).count,
+      0);
+}
+
+// The history holds the lights set apart as dark records: a spot set apart in both frames
+// changes nothing there, however it moved; one that goes into the history reaches its new cone
+// only, one that leaves it its old cone only; a point light going in or out reaches everywhere.
+TEST(LightsApart, ReachTheHistoryOnlyWhenTheyGoInOrOut) {
+  const Light t = turned(kSpot, vec3(0.0f, -1.0f, 1.0f));
+  const auto before = records({kStill, kSpot}), after = records({kStill, t});
+  LightsApart spot;
+  spot.index[0] = 1;
+  spot.count = 1;
+  const auto dark_before = lights_in_history(before, spot),
+             dark_after = lights_in_history(after, spot);
+  EXPECT_EQ(dark_before[0], before[0]);
+  EXPECT_EQ(max_component(dark_before[1].intensity), 0.0f);
+  EXPECT_EQ(dark_before[1].type, LightType::kSpot);
+  const LightChangeRegion both = light_change_region(dark_before, dark_after);
+  EXPECT_FALSE(both.everywhere);
+  EXPECT_EQ(both.cones, 0);
+  const vec3 in_old = kSpot.position + 2.0f * glm::normalize(kSpot.direction);
+  const vec3 in_new = t.position + 2.0f * glm::normalize(t.direction);
+  const LightChangeRegion in = light_change_region(dark_before, after);
+  ASSERT_FALSE(in.everywhere);
+  EXPECT_EQ(in.cones, 1);
+  EXPECT_TRUE(in.contains(in_new));
+  EXPECT_FALSE(in.contains(in_old));
+  const LightChangeRegion out = light_change_region(before, dark_after);
+  ASSERT_FALSE(out.everywhere);
+  EXPECT_TRUE(out.contains(in_old));
+  EXPECT_FALSE(out.contains(in_new));
+  LightsApart point;
+  point.count = 1;
+  Light moved_point = kStill;
+  moved_point.position.x += 0.1f;
+  const auto point_before = lights_in_history(before, point);
+  EXPECT_TRUE(light_change_region(point_before, before).everywhere);
+  EXPECT_FALSE(
+      light_change_region(point_before, lights_in_history(records({moved_point, kSpot}), point))
+          .everywhere);
+}
+
 // Only a change of lights alone is narrowed: moved meshes, materials, parameters and a new scene
 // reach everywhere whatever the lights did; a camera move beside it does not widen it.
 TEST(LightChangeRegion, OnlyLightChangesAreNarrowed) {

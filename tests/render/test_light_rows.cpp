@@ -222,17 +222,31 @@ struct CornellDirect {
     compute_direct(data.view(), picker.view(), *tracer, g, scene.camera.position, settings, out);
     return out;
   }
-  // The per-pixel kernel, each shadow ray traced on its own.
-  Image per_pixel(const DirectSettings& settings) const {
+  // The same with the lights settings.apart names: their light into `apart`.
+  Image rows(const DirectSettings& settings, Image& apart) const {
     Image out(kSize, kSize);
+    apart = Image(kSize, kSize);
+    compute_direct(data.view(), picker.view(), *tracer, g, scene.camera.position, settings, out,
+                   &apart);
+    return out;
+  }
+  // The per-pixel kernel, each shadow ray traced on its own; the lights set apart into `apart`
+  // when given.
+  Image per_pixel(const DirectSettings& settings, Image* apart = nullptr) const {
+    Image out(kSize, kSize);
+    if (apart) *apart = Image(kSize, kSize);
     const ConstGBufferView view = g.view();
     for (uint32_t i = 0; i < uint32_t(view.size()); ++i) {
-      vec3 sum = view.emission[i];
+      vec3 sum = view.emission[i], apart_sum(0.0f);
+      auto add_to = [&](vec3& to) {
+        return [&](const Ray& ray, vec3 radiance) {
+          if (!tracer->occluded(ray)) to += radiance;
+        };
+      };
       direct_light_pixel(data.view(), picker.view(), view, i, scene.camera.position, settings,
-                         [&](const Ray& ray, vec3 radiance) {
-                           if (!tracer->occluded(ray)) sum += radiance;
-                         });
+                         add_to(sum), add_to(apart ? apart_sum : sum));
       out.pixels()[i] = sum;
+      if (apart) apart->pixels()[i] = apart_sum;
     }
     return out;
   }
@@ -281,6 +295,60 @@ TEST(LightRows, PointSpotSunAndAreaLightsEqualThePerPixelKernel) {
   for (size_t i = 0; i < with.pixel_count(); ++i)
     added += double(luminance(with.pixels()[i]) - luminance(without.pixels()[i]));
   EXPECT_GT(added, 1.0);
+}
+
+// Lights set apart (DirectSettings::apart: the renderer's moved lights) take a shadow ray of
+// their own at every pixel, into an image of their own: with a ray per sample the two images sum
+// to the frame without them, and with one ray per pixel their image is the same; the row loop and
+// the per-pixel kernel agree; resampled light samples (many-light scenes) leave them out.
+TEST(LightRows, LightsSetApartTakeRaysOfTheirOwn) {
+  const CornellDirect c(/*punctual=*/true);
+  DirectSettings settings;
+  settings.light_samples = 3;
+  settings.frame = 5;
+  DirectSettings apart_settings = settings;
+  apart_settings.apart_count = 2;
+  apart_settings.apart[0] = 1;  // the spot
+  apart_settings.apart[1] = 0;  // the point light
+  ASSERT_TRUE(c.scene.lights[1].type == LightType::kSpot);
+  const Image whole = c.rows(settings);
+  Image apart, apart_one_ray, apart_per_pixel;
+  const Image rest = c.rows(apart_settings, apart);
+  double apart_light = 0.0;
+  for (size_t i = 0; i < whole.pixel_count(); ++i) {
+    expect_vec_near(rest.pixels()[i] + apart.pixels()[i], whole.pixels()[i], 1e-4f);
+    apart_light += double(luminance(apart.pixels()[i]));
+  }
+  EXPECT_GT(apart_light, 0.5) << "the spot and the point light light the box";
+  const Image rest_per_pixel = c.per_pixel(apart_settings, &apart_per_pixel);
+  apart_settings.one_shadow_ray = true;
+  const Image rest_one_ray = c.rows(apart_settings, apart_one_ray);
+  const Image rest_one_ray_per_pixel = c.per_pixel(apart_settings);
+  for (size_t i = 0; i < whole.pixel_count(); ++i) {
+    expect_vec_near(rest_per_pixel.pixels()[i], rest.pixels()[i], 1e-4f);
+    expect_vec_near(apart_per_pixel.pixels()[i], apart.pixels()[i], 1e-4f);
+    EXPECT_EQ(apart_one_ray.pixels()[i], apart.pixels()[i]);
+    // (per_pixel without an image for them adds them to the frame.)
+    expect_vec_near(rest_one_ray_per_pixel.pixels()[i],
+                    rest_one_ray.pixels()[i] + apart.pixels()[i], 1e-4f);
+  }
+  // Resampled: the frames' mean without the lights set apart plus their image is the mean with
+  // every light resampled.
+  settings.max_looped_lights = apart_settings.max_looped_lights = 1;
+  apart_settings.one_shadow_ray = false;
+  double with_all = 0.0, without_apart = 0.0;
+  for (uint32_t frame = 0; frame < 64; ++frame) {
+    settings.frame = apart_settings.frame = frame;
+    Image resampled_apart;
+    const Image all = c.per_pixel(settings), part = c.per_pixel(apart_settings, &resampled_apart);
+    for (size_t i = 0; i < all.pixel_count(); ++i) {
+      with_all += double(luminance(all.pixels()[i]));
+      without_apart += double(luminance(part.pixels()[i]));
+      if (frame == 0) expect_vec_near(resampled_apart.pixels()[i], apart.pixels()[i], 1e-4f);
+    }
+  }
+  without_apart += 64.0 * apart_light;
+  EXPECT_NEAR(without_apart / with_all, 1.0, 0.03);
 }
 
 TEST(LightRows, ScenesTheRowsDoNotTake) {

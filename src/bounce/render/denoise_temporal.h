@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "bounce/render/denoise_kernels.h"
 #include "bounce/render/light_change_region.h"
@@ -40,6 +41,10 @@ struct TemporalPass {
   ConstGBufferView g;              // this frame's
   const vec3* direct = nullptr;    // direct light with the emission the G-buffer saw
   const vec3* indirect = nullptr;  // null without indirect light
+  // Light that joins the emission rather than the light filtered (null: none): the lights the
+  // renderer shades apart (DirectSettings::apart), exact in each frame. Averaged with the
+  // emission in motion, its history clamped to this frame's neighbourhood (shown_range).
+  const vec3* exact = nullptr;
   ConstSurfacePlanes prev_surface;
   ConstHistoryPlanes prev;
   const float* prev_length = nullptr;
@@ -72,6 +77,11 @@ BOUNCE_HD inline void demodulated(const TemporalPass& p, size_t i, vec3& direct,
   const vec3 inv = 1.0f / demodulation_factor(p.g.albedo[i]);
   direct = (p.direct[i] - p.g.emission[i]) * inv;
   indirect = p.indirect ? p.indirect[i] * inv : vec3(0.0f);
+}
+
+// What pixel i adds to its remodulated light: the emission, and the exact light (p.exact).
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 shown_emission(const TemporalPass& p, size_t i) {
+  return p.exact ? p.g.emission[i] + p.exact[i] : p.g.emission[i];
 }
 
 // Last frame's history for this frame's pixel (x, y): the normalised sum of the taps kept.
@@ -225,6 +235,42 @@ BOUNCE_HD inline void clip_history(const ColorBox& box, float gamma, vec4& color
   color = vec4(clipped, color.w + l * l - l0 * l0);
 }
 
+// shown_emission demodulated: a beam on a textured wall is then as smooth as its light.
+BOUNCE_HD BOUNCE_LANE_INLINE vec3 shown_demodulated(const TemporalPass& p, size_t i) {
+  return shown_emission(p, i) / demodulation_factor(p.g.albedo[i]);
+}
+
+// The range (per channel) of shown_demodulated over the 3x3 pixels around (x, y) with a surface:
+// the history of the exact light of a moving light is clamped into it (demodulated by the
+// history's own factor: clamp_shown), as temporal antialiasing clamps a history (Karis 2014): an
+// edge's range holds both sides, so jittered frames average there, while a moved beam's old
+// light, outside the range, goes.
+struct ShownRange {
+  vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+
+  BOUNCE_HD BOUNCE_LANE_INLINE void add(bool counts, vec3 e) {
+    lo = pick(counts, glm::min(lo, e), lo);
+    hi = pick(counts, glm::max(hi, e), hi);
+  }
+  // `e` clamped into the range; unchanged where the range is empty.
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 clamp(vec3 e) const { return glm::min(glm::max(e, lo), hi); }
+  // A history's shown emission `e` with its modulation factor `f`, clamped demodulated. (A
+  // history not kept has f 0: its value is not used, but must stay finite.)
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 clamp_shown(vec3 e, vec3 f) const {
+    const vec3 safe = glm::max(f, vec3(1e-6f));
+    return clamp(e / safe) * safe;
+  }
+};
+BOUNCE_HD inline ShownRange shown_range(const TemporalPass& p, int x, int y) {
+  ShownRange r;
+  for (int qy = glm::max(y - 1, 0); qy <= glm::min(y + 1, p.height - 1); ++qy)
+    for (int qx = glm::max(x - 1, 0); qx <= glm::min(x + 1, p.width - 1); ++qx) {
+      const size_t q = size_t(qy) * size_t(p.width) + size_t(qx);
+      r.add(p.g.hit(q), shown_demodulated(p, q));
+    }
+  return r;
+}
+
 // The first half of the temporal pass at pixel (x, y): last frame's history where it is kept,
 // clipped to this frame's neighbourhood when the world changed.
 BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int y) {
@@ -237,15 +283,16 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
     r.clipped = p.direct_region.contains(p.g.position[i]);
     if (r.clipped) clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
     if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
+    if (p.exact) r.emission = shown_range(p, x, y).clamp_shown(r.emission, r.factor);
   }
   return r;
 }
 
 // This frame's demodulated light as planes, for the CPU's clipped rows (their loops then
-// vectorise): direct rgb, indirect rgb, and each pixel's weight in a neighbourhood (1 with a
-// surface, 0 without).
-inline constexpr int kDemodulatedPlanes = 7;
-template <bool kIndirect>
+// vectorise): direct rgb, indirect rgb, each pixel's weight in a neighbourhood (1 with a
+// surface, 0 without), and with kExact its shown_emission rgb.
+inline constexpr int kDemodulatedPlanes = 10;
+template <bool kIndirect, bool kExact>
 BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_t i,
                                                     float* const* v) {
   vec3 d, ind;
@@ -263,6 +310,12 @@ BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_
     v[5][i] = ind.z;
   }
   v[6][i] = hit ? 1.0f : 0.0f;
+  if constexpr (kExact) {
+    const vec3 e = shown_demodulated(p, i);
+    v[7][i] = e.x;
+    v[8][i] = e.y;
+    v[9][i] = e.z;
+  }
 }
 
 // neighbourhood() at pixel x of the row whose neighbour rows (y - 1, y, y + 1) start at `rows`,
@@ -297,6 +350,29 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
     n += w;
   });
   return {color_box(n, d1, d2), color_box(n, i1, i2)};
+}
+
+// shown_range() at pixel x of the row, from store_demodulated's planes (with kExact), as
+// neighbourhood_planes reads them.
+template <bool kChecked>
+BOUNCE_HD BOUNCE_LANE_INLINE ShownRange shown_range_planes(const float* const* v,
+                                                           const size_t (&rows)[3],
+                                                           const float (&row_mask)[3], int x,
+                                                           int width) {
+  ShownRange r;
+  unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
+    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
+    float mask = row_mask[dy + 1];
+    int qx = x + dx;
+    if constexpr (kChecked) {
+      const bool inside = (qx >= 0) & (qx < width);
+      mask = inside ? mask : 0.0f;
+      qx = inside ? qx : x;
+    }
+    const size_t q = rows[dy + 1] + size_t(qx);
+    r.add(mask * v[6][q] != 0.0f, vec3(v[7][q], v[8][q], v[9][q]));
+  });
+  return r;
 }
 
 // A row of temporal_history's results as planes, where the CPU's first half leaves them for the
@@ -360,6 +436,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   p.surface.object[i] = pick(hit, mesh, kNoPrimitive);
 
   const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];
+  const vec3 shown = shown_emission(p, i);
   const vec3 inv = 1.0f / factor;
   const vec3 in_d = p.direct[i];
   const vec3 in_i = kIndirect ? p.indirect[i] : vec3(0.0f);
@@ -383,7 +460,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
     const vec3 e0 = p.rest.emission.get(i);
     const vec3 f1 = f0 + (factor - f0) * alpha;
     p.rest.factor.set(i, f1);
-    p.rest.emission.set(i, pick(continues, e0 + (emission - e0) * alpha, emission));
+    p.rest.emission.set(i, pick(continues, e0 + (shown - e0) * alpha, shown));
     // At rest jittered frames see other surfaces at an edge: the light that goes back out is
     // the average of the modulated light (the history times the average factor, plus this
     // frame), divided by the new average factor, so that remodulating by it returns exactly the
@@ -400,7 +477,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
     // Where the history is not kept (a disocclusion, or none) the pixel takes this frame's.
     const float a = kept ? p.s.modulation_alpha : 1.0f;
     p.rest.factor.set(i, r.factor + (factor - r.factor) * a);
-    p.rest.emission.set(i, r.emission + (emission - r.emission) * a);
+    p.rest.emission.set(i, r.emission + (shown - r.emission) * a);
   }
   // (Without a surface and history, next is this frame's light: what a later frame at rest
   // averages with. In motion the filter's result there is not used: remodulation keeps what the

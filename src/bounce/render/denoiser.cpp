@@ -119,9 +119,15 @@ void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
   for_rows(pass.height, [&](int y) {
     const denoise::TemporalPass p = pass;
     const size_t first = size_t(y) * size_t(p.width);
-    BOUNCE_IVDEP
-    for (size_t i = first; i < first + size_t(p.width); ++i)
-      denoise::store_demodulated<kIndirect>(p, i, v);
+    if (p.exact) {
+      BOUNCE_IVDEP
+      for (size_t i = first; i < first + size_t(p.width); ++i)
+        denoise::store_demodulated<kIndirect, true>(p, i, v);
+    } else {
+      BOUNCE_IVDEP
+      for (size_t i = first; i < first + size_t(p.width); ++i)
+        denoise::store_demodulated<kIndirect, false>(p, i, v);
+    }
   });
 }
 
@@ -182,6 +188,21 @@ void clip_row_where(const denoise::TemporalPass& p, const float* const* demodula
   row_loop(
       p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
       [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+  if (!p.exact) return;
+  // The shown emission's history into its range (denoise::shown_range).
+  float* e[3] = {row.v[13], row.v[14], row.v[15]};
+  const float* f[3] = {row.v[10], row.v[11], row.v[12]};
+  auto clamp = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
+    const denoise::ShownRange r =
+        denoise::shown_range_planes<kChecked>(demodulated, rows, row_mask, x, p.width);
+    const vec3 c = r.clamp_shown(vec3(e[0][x], e[1][x], e[2][x]), vec3(f[0][x], f[1][x], f[2][x]));
+    e[0][x] = c.x;
+    e[1][x] = c.y;
+    e[2][x] = c.z;
+  };
+  row_loop(
+      p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clamp.template operator()<true>(x); },
+      [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clamp.template operator()<false>(x); });
 }
 
 // clip_row_where with direct light clipped in the pass's direct_region.
@@ -808,6 +829,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.g = gbuffer.view();
     temporal.direct = direct.data();
     temporal.indirect = indirect ? indirect->data() : nullptr;
+    temporal.exact = frame.exact ? frame.exact->pixels().data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
     temporal.prev = history_planes(prev_history);
     temporal.prev_length = prev_length.data();

@@ -130,6 +130,10 @@ struct DenoiseFrame {
   // Where direct light's history is clipped when the world changed (LightChangeRegion): the
   // Renderer narrows it to the cones of the spot lights that moved when nothing else changed.
   LightChangeRegion direct_region = LightChangeRegion::all();
+  // Light added to the emission (null: none; the G-buffer's size): the light of the lights the
+  // Renderer shades apart, exact in each frame; in motion averaged with the emission, its history
+  // clamped to this frame's neighbourhood (denoise::TemporalPass::exact).
+  const Image* exact = nullptr;
 };
 
 class Denoiser {

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "bounce/core/error.h"
 #include "bounce/core/parallel.h"
 #include "bounce/scene/bounds.h"
 
@@ -19,25 +20,25 @@ struct ShadowBatch {
   // Fixed arrays and a count: a vector's push_back checked its capacity three times per ray.
   std::unique_ptr<Ray[]> rays{new Ray[kCapacity]};
   std::unique_ptr<vec3[]> radiance{new vec3[kCapacity]};
-  std::unique_ptr<uint32_t[]> pixel{new uint32_t[kCapacity]};
+  std::unique_ptr<vec3* []> target { new vec3*[kCapacity] };  // the pixel its light adds to
   std::unique_ptr<uint8_t[]> blocked{new uint8_t[kCapacity]};
   size_t size = 0;
   uint64_t traced = 0;
 
-  // Queues pixel i's ray; a full batch is traced at once.
-  void add(const Ray& ray, vec3 ray_radiance, uint32_t i, const Tracer& tracer, vec3* out) {
+  // Queues a ray whose light adds to `to` if clear; a full batch is traced at once.
+  void add(const Ray& ray, vec3 ray_radiance, vec3* to, const Tracer& tracer) {
     rays[size] = ray;
     radiance[size] = ray_radiance;
-    pixel[size] = i;
-    if (++size == kCapacity) flush(tracer, out);
+    target[size] = to;
+    if (++size == kCapacity) flush(tracer);
   }
 
-  void flush(const Tracer& tracer, vec3* out) {
+  void flush(const Tracer& tracer) {
     tracer.occluded(std::span<const Ray>(rays.get(), size),
                     std::span<uint8_t>(blocked.get(), size));
     traced += size;
     for (size_t k = 0; k < size; ++k)
-      if (!blocked[k]) out[pixel[k]] += radiance[k];
+      if (!blocked[k]) *target[k] += radiance[k];
     size = 0;
   }
 };
@@ -320,7 +321,8 @@ bool direct_takes_rows(const SceneView& scene, const LightPickerView& lights,
 }
 
 DirectPass::DirectPass(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
-                       const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out)
+                       const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out,
+                       Image* apart)
     : scene_(scene),
       lights_(lights),
       tracer_(tracer),
@@ -328,11 +330,14 @@ DirectPass::DirectPass(const SceneView& scene, const LightPickerView& lights, co
       eye_(eye),
       settings_(settings),
       pixels_(out.pixels().data()),
+      apart_pixels_(apart ? apart->pixels().data() : nullptr),
       rows_(direct_takes_rows(scene, lights, settings)),
       batches_(std::make_unique<tbb::enumerable_thread_specific<ShadowBatch>>()) {
+  if (settings.apart_count > 0 && !apart)
+    fail("direct light: lights set apart need an image of their own");
   if (!rows_) return;
-  punctual_.resize(scene.light_count);
-  for (uint32_t l = 0; l < scene.light_count; ++l) punctual_[l] = punctual_lane(scene.lights[l]);
+  for (uint32_t l = 0; l < scene.light_count; ++l)
+    (settings.is_apart(l) ? apart_ : punctual_).push_back(punctual_lane(scene.lights[l]));
   corners_.resize(scene.area_light_count);
   for (uint32_t a = 0; a < scene.area_light_count; ++a)
     corners_[a] = area_light_corners(scene, scene.area_lights[a]);
@@ -359,7 +364,7 @@ void DirectPass::run(int x0, int y0, int x1, int y1) {
     }
   // The block's pixels are final before it ends: the rays still waiting are traced now. (A
   // pixel's rays reach it in the order they were made, whatever the batches' bounds.)
-  batches_->local().flush(tracer_, pixels_);
+  batches_->local().flush(tracer_);
 }
 
 // Per tile row and light sample: a light_lane.h lane runs across the row as vector code (for an
@@ -371,6 +376,7 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
   const ConstGBufferView& view = view_;
   const Tracer& tracer = tracer_;
   vec3* pixels = pixels_;
+  vec3* apart_pixels = apart_pixels_;
   const int n = settings_.light_samples;
   const float inv_n = 1.0f / float(n);
   const bool select = select_;
@@ -391,12 +397,28 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
         const vec3 radiance = row.radiance[j];
         if (max_component(radiance) > 0.0f)
           b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
-                uint32_t(i0) + uint32_t(j), tracer, pixels);
+                pixels + i0 + size_t(j), tracer);
       }
     };
     for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
+    if (apart_pixels)
+      for (int j = 0; j < width; ++j) apart_pixels[i0 + size_t(j)] = vec3(0.0f);
     if (select) selection.start(uint32_t(i0), width, settings_);
     const bool glossy = surfaces.load(view, i0, width, eye_);
+    // The lights set apart: a ray of each one's own at every pixel it reaches.
+    for (const PunctualLane& light : apart_) {
+      if (surfaces.outside(light)) continue;
+      if (glossy)
+        shade_punctual_row<true>(surfaces, width, light, row);
+      else
+        shade_punctual_row<false>(surfaces, width, light, row);
+      for (int j = 0; j < width; ++j) {
+        const vec3 radiance = row.radiance[j];
+        if (max_component(radiance) > 0.0f)
+          b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
+                apart_pixels + i0 + size_t(j), tracer);
+      }
+    }
     for (const PunctualLane& light : punctual_) {
       if (surfaces.outside(light)) continue;
       if (glossy)
@@ -428,7 +450,7 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
           b.add(shadow_ray(surfaces.origin[j], selection.wi[j], selection.distance[j]),
                 ShadowSelection::weighted(selection.radiance[j], selection.kept[j],
                                           selection.total[j]),
-                uint32_t(i0) + uint32_t(j), tracer, pixels);
+                pixels + i0 + size_t(j), tracer);
   }
 }
 
@@ -438,10 +460,14 @@ void DirectPass::pixel_tile(int x0, int y0, int x1, int y1) {
     for (int x = x0; x < x1; ++x) {
       const uint32_t i = uint32_t(view_.index(x, y));
       pixels_[i] = view_.emission[i];  // before the samples: a full batch adds to it at once
+      if (apart_pixels_) apart_pixels_[i] = vec3(0.0f);
       auto shadow = [&](const Ray& ray, vec3 radiance) {
-        b.add(ray, radiance, i, tracer_, pixels_);
+        b.add(ray, radiance, pixels_ + i, tracer_);
       };
-      direct_light_pixel(scene_, lights_, view_, i, eye_, settings_, shadow);
+      auto apart = [&](const Ray& ray, vec3 radiance) {
+        b.add(ray, radiance, apart_pixels_ + i, tracer_);
+      };
+      direct_light_pixel(scene_, lights_, view_, i, eye_, settings_, shadow, apart);
     }
 }
 
@@ -452,8 +478,9 @@ uint64_t DirectPass::shadow_rays() const {
 }
 
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
-                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out) {
-  DirectPass pass(scene, lights, tracer, g, eye, settings, out);
+                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out,
+                        Image* apart) {
+  DirectPass pass(scene, lights, tracer, g, eye, settings, out, apart);
   parallel_for_tiles(g.width, g.height, pass.tile(),
                      [&](int x0, int y0, int x1, int y1) { pass.run(x0, y0, x1, y1); });
   return pass.shadow_rays();

@@ -21,9 +21,11 @@
 namespace bounce {
 
 // Writes emitted plus direct radiance towards `eye` for every pixel; returns shadow rays traced.
-// `lights` picks lights by power for the resampled path (LightPicker::view()).
+// `lights` picks lights by power for the resampled path (LightPicker::view()). The light of the
+// lights set apart (DirectSettings::apart) goes to `apart` (sized as `out`; needed when any is).
 uint64_t compute_direct(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
-                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
+                        const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out,
+                        Image* apart = nullptr);
 
 struct ShadowBatch;  // direct.cpp: shadow rays traced a batch at a time
 
@@ -33,7 +35,8 @@ struct ShadowBatch;  // direct.cpp: shadow rays traced a batch at a time
 class DirectPass {
  public:
   DirectPass(const SceneView& scene, const LightPickerView& lights, const Tracer& tracer,
-             const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out);
+             const GBuffer& g, vec3 eye, const DirectSettings& settings, Image& out,
+             Image* apart = nullptr);
   ~DirectPass();
   DirectPass(const DirectPass&) = delete;
   DirectPass& operator=(const DirectPass&) = delete;
@@ -57,9 +60,11 @@ class DirectPass {
   vec3 eye_;
   DirectSettings settings_;
   vec3* pixels_;
+  vec3* apart_pixels_;   // null without lights set apart
   bool rows_;            // direct_takes_rows
   bool select_ = false;  // one shadow ray a pixel among several samples
   std::vector<PunctualLane> punctual_;
+  std::vector<PunctualLane> apart_;          // the lights set apart (DirectSettings::apart)
   std::vector<std::vector<float>> corners_;  // each area light's (area_light_corners)
   std::unique_ptr<tbb::enumerable_thread_specific<ShadowBatch>> batches_;
 };

@@ -36,6 +36,19 @@ struct DirectSettings {
   // One shadow ray per pixel, for one of its light samples chosen by unshadowed contribution
   // (ShadowSelection), instead of one ray per light sample.
   bool one_shadow_ray = false;
+  // Punctual lights (Scene::lights indices) shaded apart: each with a shadow ray of its own at
+  // every pixel, handed to the launcher's `apart` rather than to `shadow` or the selection. The
+  // renderer sets apart the lights that moved this frame (a carried flashlight): their light is
+  // exact in one frame, and the denoiser's history, which would lag behind it, never holds it.
+  static constexpr int kMaxApart = 2;
+  uint32_t apart[kMaxApart] = {};
+  int apart_count = 0;
+
+  BOUNCE_HD bool is_apart(uint32_t light) const {
+    bool found = false;
+    for (int k = 0; k < apart_count; ++k) found |= apart[k] == light;
+    return found;
+  }
 };
 
 // Whether a scene with `lights` (LightPicker's entries) takes direct_pixel_resampled rather than
@@ -175,7 +188,8 @@ BOUNCE_HD void direct_pixel(const SceneView& scene, const ConstGBufferView& g, u
       continue;
     }
     if (is_punctual(light.type)) {
-      offer_lane_sample(lane, punctual_light_lane(lane, punctual_lane(light), 1.0f), shadow);
+      if (!settings.is_apart(l))
+        offer_lane_sample(lane, punctual_light_lane(lane, punctual_lane(light), 1.0f), shadow);
       continue;
     }
     // Diffuse from cone samples; GGX specular from Karis' representative point, shadowed by
@@ -237,9 +251,12 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
       const uint32_t entry = picker.pick(u_pick);
       const float pmf = picker.pmf[entry];
       if (!(pmf > 0.0f)) continue;
-      // The environment is sampled apart (below): as a candidate its target is 0, so the
-      // resampled estimate covers the other lights alone and stays unbiased for them.
-      if (int32_t(entry) == scene.environment) continue;
+      // The environment and the lights set apart are sampled apart (below): as candidates
+      // their target is 0, so the resampled estimate covers the other lights alone and stays
+      // unbiased for them.
+      if (int32_t(entry) == scene.environment ||
+          (entry < picker.light_count && settings.is_apart(entry)))
+        continue;
       const LightSample ls = sample_light_entry(scene, picker.light_count, entry, p, u).ls;
       if (!ls.valid()) continue;
       const float cos_theta = glm::dot(s.normal, ls.wi);
@@ -307,20 +324,35 @@ struct ShadowSelection {
   }
 };
 
+// The lights set apart (DirectSettings::apart) at pixel i: each one's sample handed to
+// apart(ray, radiance) unless nothing arrives.
+template <typename Apart>
+BOUNCE_HD void direct_pixel_apart(const SceneView& scene, const ConstGBufferView& g, uint32_t i,
+                                  vec3 eye, const DirectSettings& settings, Apart&& apart) {
+  if (settings.apart_count == 0 || !g.hit(i)) return;
+  const LaneSurface lane = lane_surface(g.surface(i), eye);
+  for (int k = 0; k < settings.apart_count; ++k)
+    offer_lane_sample(
+        lane, punctual_light_lane(lane, punctual_lane(scene.lights[settings.apart[k]]), 1.0f),
+        apart);
+}
+
 // Direct light at pixel i, as the pipeline takes it: the loop over every light, or resampled
 // light samples in scenes with many lights (resamples_lights), each sample handed to
 // shadow(ray, radiance); with settings.one_shadow_ray, one sample for them all
-// (ShadowSelection). The one entry the CPU and GPU launchers call.
-template <typename Shadow>
+// (ShadowSelection). The lights set apart go to apart(ray, radiance), each with its own ray.
+// The one entry the CPU and GPU launchers call.
+template <typename Shadow, typename Apart>
 BOUNCE_HD void direct_light_pixel(const SceneView& scene, const LightPickerView& picker,
                                   const ConstGBufferView& g, uint32_t i, vec3 eye,
-                                  const DirectSettings& settings, Shadow&& shadow) {
+                                  const DirectSettings& settings, Shadow&& shadow, Apart&& apart) {
   auto samples = [&](auto&& to) {
     if (resamples_lights(picker, settings))
       direct_pixel_resampled(scene, picker, g, i, eye, settings, to);
     else
       direct_pixel(scene, g, i, eye, settings, to);
   };
+  direct_pixel_apart(scene, g, i, eye, settings, apart);
   if (!settings.one_shadow_ray) {
     samples(shadow);
     return;
@@ -328,6 +360,15 @@ BOUNCE_HD void direct_light_pixel(const SceneView& scene, const LightPickerView&
   ShadowSelection selection = ShadowSelection::for_pixel(i, settings);
   samples(selection);
   selection.finish(shadow);
+}
+
+// The same where the lights set apart add to the pixel like the others (a launcher with one
+// image).
+template <typename Shadow>
+BOUNCE_HD void direct_light_pixel(const SceneView& scene, const LightPickerView& picker,
+                                  const ConstGBufferView& g, uint32_t i, vec3 eye,
+                                  const DirectSettings& settings, Shadow&& shadow) {
+  direct_light_pixel(scene, picker, g, i, eye, settings, shadow, shadow);
 }
 
 }  // namespace bounce

@@ -26,10 +26,10 @@ int64_t nanoseconds_since(std::chrono::steady_clock::time_point t) {
 GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
                                           const Tracer& tracer, const CameraRays& camera,
                                           vec2 subpixel, const DirectSettings& settings, GBuffer& g,
-                                          Image& direct, const AfterBand& after_band,
+                                          Image& direct, Image* apart, const AfterBand& after_band,
                                           const PrimaryRaster* raster) {
   Stopwatch wall;
-  DirectPass pass(scene, lights, tracer, g, camera.origin, settings, direct);
+  DirectPass pass(scene, lights, tracer, g, camera.origin, settings, direct, apart);
   const GBufferView view = g.view();
   std::atomic<int64_t> gbuffer_ns{0}, direct_ns{0}, band_ns{0};
   parallel_for_tiles(g.width, g.height, g.width, kBandRows, [&](int x0, int y0, int x1, int y1) {

@@ -32,12 +32,13 @@ struct GBufferAndDirect {
 using AfterBand = std::function<void(int, int, int, int)>;
 
 // build_gbuffer (all but the motion: compute_motion; with `raster` as build_gbuffer takes it) and
-// compute_direct, band by band, then after_band (if any) on the band. `g` and `direct` are
-// already sized.
+// compute_direct, band by band, then after_band (if any) on the band. `g`, `direct` and `apart`
+// (compute_direct's; null without lights set apart) are already sized.
 GBufferAndDirect build_gbuffer_and_direct(const SceneView& scene, const LightPickerView& lights,
                                           const Tracer& tracer, const CameraRays& camera,
                                           vec2 subpixel, const DirectSettings& settings, GBuffer& g,
-                                          Image& direct, const AfterBand& after_band = {},
+                                          Image& direct, Image* apart,
+                                          const AfterBand& after_band = {},
                                           const PrimaryRaster* raster = nullptr);
 
 }  // namespace bounce

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <span>
+#include <vector>
 
 #include "bounce/core/device.h"
 #include "bounce/core/lane.h"
@@ -47,10 +48,28 @@ struct LightChangeRegion {
 };
 
 // The region of `before` -> `after` (the scene's lights at two frames): the outer cones of the
-// spot lights that differ, both poses; everywhere when another kind of light changed, the number
-// of lights changed or more spots changed than the region holds.
+// spot lights that differ, both poses (a pose that sends no light, none: lights_in_history's dark
+// records); everywhere when another kind of light changed, the number of lights changed or more
+// spots changed than the region holds.
 LightChangeRegion light_change_region(std::span<const LightRecord> before,
                                       std::span<const LightRecord> after);
+
+// The point, spot and directional lights that differ between two frames' records (`before` the
+// last frame's), which the renderer shades apart from the denoiser's history
+// (DirectSettings::apart): none when more moved than this holds, or the light count changed.
+struct LightsApart {
+  static constexpr int kMax = 2;
+  uint32_t index[kMax] = {};
+  int count = 0;
+};
+LightsApart moved_punctual_lights(std::span<const LightRecord> before,
+                                  std::span<const LightRecord> after);
+
+// `lights` as the denoiser's history holds them: those set apart as dark records (the type
+// alone, sending no light; the same whatever the pose), so that a light kept apart frame after
+// frame changes nothing there, and one going into or out of the history changes its cone.
+std::vector<LightRecord> lights_in_history(std::span<const LightRecord> lights,
+                                           const LightsApart& apart);
 
 // The region of a frame's `change`, the lights having been `before` at the last frame: the
 // lights' region (light_change_region) when nothing but lights changed, else everywhere (moved

@@ -43,6 +43,8 @@ std::vector<std::string> Renderer::parameter_state(const FrameSettings& settings
   state.push_back(std::to_string(settings.seed));
   state.push_back(settings.accumulate ? "accumulate" : "per-frame");
   state.push_back(settings.denoise ? "denoise" : "raw");
+  state.push_back(settings.moving_lights_apart ? "moving lights apart"
+                                               : "moving lights in history");
   return state;
 }
 
@@ -110,11 +112,20 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   last_parameters_ = std::move(parameters);
   last_denoise_ = denoiser_.settings();
   const SceneChange& change = f.change;
-  // Where the change reached direct light, for the denoiser's clip: when nothing but lights
-  // changed, only the cones of the spots that moved (a carried flashlight).
+  // The lights set apart this frame, and where the change reached the direct light the
+  // history holds, for the denoiser's clip: when nothing but lights changed, only the cones of
+  // the spots that moved (a carried flashlight) or went into or out of the history.
   std::vector<LightRecord> lights(scene_.lights.begin(), scene_.lights.end());
-  const LightChangeRegion direct_region = light_change_region(change, last_lights_, lights);
+  const bool keeps_history = settings.denoise && denoiser_.settings().temporal;
+  const LightsApart apart =
+      settings.moving_lights_apart && keeps_history && !device_ && !change.everything
+          ? moved_punctual_lights(last_lights_, lights)
+          : LightsApart{};
+  std::vector<LightRecord> history_lights = lights_in_history(lights, apart);
+  const LightChangeRegion direct_region =
+      light_change_region(change, last_history_lights_, history_lights);
   last_lights_ = std::move(lights);
+  last_history_lights_ = std::move(history_lights);
   const bool rest = settings.accumulate && !change.any();
   rest_frames_ = rest ? rest_frames_ + 1 : 1;
   // The denoiser's temporal part takes over the averaging at rest.
@@ -180,6 +191,11 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     // One pass: each band's direct light right after its G-buffer, from the cache.
     if (f.gbuffer.width != w || f.gbuffer.height != h) f.gbuffer.resize(w, h);
     if (f.direct.width() != w || f.direct.height() != h) f.direct = Image(w, h);
+    if (apart.count > 0 && (f.apart.width() != w || f.apart.height() != h)) f.apart = Image(w, h);
+    DirectSettings direct = direct_settings(settings, frame_index_);
+    static_assert(LightsApart::kMax <= DirectSettings::kMaxApart);
+    direct.apart_count = apart.count;
+    for (int k = 0; k < apart.count; ++k) direct.apart[k] = apart.index[k];
     if (indirect) band_stage = technique_->begin_gbuffer_bands(context);
     AfterBand after_band;
     if (!band_stage.empty())
@@ -191,10 +207,9 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     const bool rastered = settings.raster_primary && raster_pays(scene_.triangle_count(), w, h) &&
                           raster_.build(scene_data_.view(), rays, subpixel, w, h);
     f.times.add("gbuffer", raster_watch.elapsed_ms());
-    const GBufferAndDirect pass =
-        build_gbuffer_and_direct(scene_data_.view(), lights_.view(), tracer_, rays, subpixel,
-                                 direct_settings(settings, frame_index_), f.gbuffer, f.direct,
-                                 after_band, rastered ? &raster_ : nullptr);
+    const GBufferAndDirect pass = build_gbuffer_and_direct(
+        scene_data_.view(), lights_.view(), tracer_, rays, subpixel, direct, f.gbuffer, f.direct,
+        apart.count > 0 ? &f.apart : nullptr, after_band, rastered ? &raster_ : nullptr);
     f.primary_rays = pass.primary_rays;
     f.shadow_rays = pass.shadow_rays;
     f.times.add("gbuffer", pass.gbuffer_ms);
@@ -235,7 +250,8 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
                              technique_->indirect_history() == IndirectHistory::kAccumulated,
                              f.times,
                              settings.accumulate,
-                             direct_region};
+                             direct_region,
+                             apart.count > 0 ? &f.apart : nullptr};
     denoiser_.run(frame, f.direct, indirect ? &f.indirect : nullptr);
   }
   {

@@ -54,6 +54,11 @@ struct FrameSettings {
   // where it pays (raster_pays: enough pixels per triangle): the same surfaces, found faster.
   // Off for comparison.
   bool raster_primary = true;
+  // With the denoiser's history, punctual lights that moved this frame (a carried flashlight)
+  // are shaded apart, each with its own shadow ray, and added after the denoiser: their light is
+  // exact in every frame instead of lagging in a history (DirectSettings::apart). Off for
+  // comparison.
+  bool moving_lights_apart = true;
 
   bool operator==(const FrameSettings&) const = default;
 };
@@ -70,7 +75,10 @@ struct Frame {
   GBuffer gbuffer;
   Image direct;    // direct light plus emitters seen directly (averaged at rest, or denoised)
   Image indirect;  // the technique's indirect radiance (averaged at rest, or denoised)
-  Image color;     // linear composite (empty from a GPU frame unless FrameSettings::host_color)
+  // The light of the lights set apart (DirectSettings::apart), added to `direct` after the
+  // denoiser; its size is kept between frames, its pixels are this frame's only when any is.
+  Image apart;
+  Image color;  // linear composite (empty from a GPU frame unless FrameSettings::host_color)
   std::vector<uint8_t> ldr;   // tone-mapped sRGB, 3 bytes per pixel
   int width = 0, height = 0;  // the frame's size (ldr's)
   int frames_averaged = 1;    // frames that went into this one at rest (1 after any change)
@@ -144,6 +152,8 @@ class Renderer {
   int last_width_ = 0, last_height_ = 0;
   DenoiseSettings last_denoise_;
   std::vector<LightRecord> last_lights_;
+  // The lights as the denoiser's history holds them: those set apart dark (history_lights).
+  std::vector<LightRecord> last_history_lights_;
   int rest_frames_ = 0;  // frames since the last change (Frame::frames_averaged)
   std::vector<std::string> last_parameters_;
   RunningAverage direct_average_, indirect_average_;
