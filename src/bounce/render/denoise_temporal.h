@@ -417,8 +417,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected load_reprojected(const float* const* v,
 // pass their light through, with no history. Branch-free, so the CPU's row loop vectorises;
 // kIndirect and kRest (update the rest averages: at rest and at a reset) are the pass's switches.
 // Returns whether the pixel's history is too short for its own variance (the spatial estimate then
-// stands in).
-template <bool kIndirect, bool kRest>
+// stands in). kExact: the pass has exact light (p.exact); a switch, not a test of the pointer in
+// the loop, which GCC then vectorises less well.
+template <bool kIndirect, bool kRest, bool kExact = false>
 BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                  const Reprojected& r) {
   const bool hit = p.g.hit(i);
@@ -436,7 +437,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   p.surface.object[i] = pick(hit, mesh, kNoPrimitive);
 
   const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];
-  const vec3 shown = shown_emission(p, i);
+  const vec3 shown = kExact ? emission + p.exact[i] : emission;  // shown_emission
   const vec3 inv = 1.0f / factor;
   const vec3 in_d = p.direct[i];
   const vec3 in_i = kIndirect ? p.indirect[i] : vec3(0.0f);
@@ -495,7 +496,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
 template <bool kIndirect, bool kRest>
 BOUNCE_HD inline bool temporal_pixel(const TemporalPass& p, int x, int y) {
   const size_t i = size_t(y) * size_t(p.width) + size_t(x);
-  return temporal_blend<kIndirect, kRest>(p, i, temporal_history(p, x, y));
+  const Reprojected r = temporal_history(p, x, y);
+  return p.exact ? temporal_blend<kIndirect, kRest, true>(p, i, r)
+                 : temporal_blend<kIndirect, kRest, false>(p, i, r);
 }
 
 }  // namespace bounce::denoise

@@ -246,8 +246,8 @@ void reproject_row(const denoise::TemporalPass& pass, int y, const denoise::Repr
 
 // The temporal pass row by row: the reprojected history into row planes (clipped where the world
 // changed, from `demodulated`'s planes), then the blend, in loops the compiler vectorises. Marks
-// the rows with a short history.
-template <bool kIndirect, bool kRest>
+// the rows with a short history. kExact: the pass has exact light (TemporalPass::exact).
+template <bool kIndirect, bool kRest, bool kExact>
 void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodulated,
                    std::vector<uint8_t>& row_short) {
   for_rows(pass.height, [&](int y) {
@@ -260,7 +260,7 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x)
         any_short |=
-            uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, first + size_t(x), none));
+            uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(p, first + size_t(x), none));
     } else if (!p.s.reproject) {
       // At rest every pixel keeps its own history (denoise::reproject): read it in place.
       BOUNCE_IVDEP
@@ -270,7 +270,7 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
         same.h = p.prev.get(i);
         same.length = p.prev_length[i];
         same.kept = true;
-        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(p, i, same));
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(p, i, same));
       }
     } else {
       constexpr int kPlanes = denoise::kReprojectedPlanes;
@@ -287,7 +287,7 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       for (int c = 0; c < kPlanes; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x)
-        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest>(
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(
             p, first + size_t(x), denoise::load_reprojected(v, x)));
     }
     row_short[size_t(y)] = any_short != 0;
@@ -854,12 +854,16 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
       has_indirect ? demodulate_pass<true>(temporal, demodulated)
                    : demodulate_pass<false>(temporal, demodulated);
     }
+    auto pass = [&]<bool kIndirect, bool kRest>() {
+      temporal.exact ? temporal_pass<kIndirect, kRest, true>(temporal, demodulated, b.row_short)
+                     : temporal_pass<kIndirect, kRest, false>(temporal, demodulated, b.row_short);
+    };
     if (has_indirect)
-      update_rest ? temporal_pass<true, true>(temporal, demodulated, b.row_short)
-                  : temporal_pass<true, false>(temporal, demodulated, b.row_short);
+      update_rest ? pass.template operator()<true, true>()
+                  : pass.template operator()<true, false>();
     else
-      update_rest ? temporal_pass<false, true>(temporal, demodulated, b.row_short)
-                  : temporal_pass<false, false>(temporal, demodulated, b.row_short);
+      update_rest ? pass.template operator()<false, true>()
+                  : pass.template operator()<false, false>();
   }
   b.rest_valid = update_rest;
   // Every pixel's history is at least this long (at rest each one keeps its own, unless the size
