@@ -91,6 +91,7 @@ void write_bench_json(const std::string& path, const BenchRecord& r) {
       {"height", r.settings.height},
       {"light_samples", r.settings.light_samples},
       {"shadow_rays", r.settings.one_shadow_ray ? "one" : "all"},
+      {"moving_lights", r.settings.moving_lights_apart ? "apart" : "history"},
       {"seed", r.settings.seed},
       {"accumulate", r.settings.accumulate},
       {"frames", r.frames},

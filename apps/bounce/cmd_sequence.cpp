@@ -173,6 +173,7 @@ void run_sequence(const SequenceOptions& o) {
                       {"height", settings.height},
                       {"light_samples", settings.light_samples},
                       {"shadow_rays", settings.one_shadow_ray ? "one" : "all"},
+                      {"moving_lights", settings.moving_lights_apart ? "apart" : "history"},
                       {"from", range.from},
                       {"to", range.to},
                       {"fps", range.fps},

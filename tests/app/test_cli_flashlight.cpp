@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "app/cli_test_util.h"
@@ -57,6 +59,27 @@ TEST(CliFlashlight, SequenceCarriesItAlongTheCameraPath) {
   // the noise of a frame with history) far better than the same view without it.
   const double match = mean_difference(second, b_lit);
   EXPECT_LT(match, 0.2 * mean_difference(second, b_dark)) << match;
+}
+
+// A flashlight carried along the walk, with the denoiser: its light is shaded apart while it
+// moves (the JSON says so), and --moving-lights-in-history averages it with the rest instead,
+// which leaves another displayed frame.
+TEST(CliFlashlight, SequenceShadesItApartWhileItMoves) {
+  const fs::path dir = scratch_dir("flashlight-apart");
+  const std::string scene = std::string(BOUNCE_SOURCE_DIR) + "/scenes/cornell-walk.bounce.json";
+  const auto last_frame = [&](const std::string& name, const std::string& flags) {
+    const std::string json = (dir / (name + ".json")).string();
+    const Result r = run("sequence " + scene + " -t direct -W 32 -H 32 --flashlight --from 0 " +
+                         "--to 1 --fps 8 --every 8 -o " + (dir / (name + "_%d.exr")).string() +
+                         " --json " + json + flags);
+    EXPECT_EQ(r.status, 0) << r.output;
+    std::ifstream in(json);
+    EXPECT_EQ(nlohmann::json::parse(in)["moving_lights"], flags.empty() ? "apart" : "history");
+    return load_image((dir / (name + "_8.exr")).string());
+  };
+  const Image apart = last_frame("apart", ""),
+              in_history = last_frame("history", " --moving-lights-in-history");
+  EXPECT_GT(mean_difference(apart, in_history), 1e-4 * mean_value(apart));
 }
 
 TEST(CliFlashlight, ReferenceAndBenchTakeIt) {

@@ -196,6 +196,12 @@ void draw_panel(ViewSession& session, PanelState& state) {
       ImGui::SetTooltip(
           "all: one per light sample; one: one per pixel, for the light sample chosen by its "
           "unshadowed light; auto: one with one light sample");
+    bool apart = !session.moving_lights_in_history();
+    if (ImGui::Checkbox("moving lights apart", &apart)) session.moving_lights_in_history() = !apart;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "A moving flashlight or lamp shaded with a shadow ray of its own and kept out of the "
+          "denoiser's history, so its light shows where it is; off: averaged with the rest");
     float target = float(session.scaler().settings().target_ms);
     if (ImGui::SliderFloat("target ms", &target, 0.0f, 200.0f, "%.0f"))
       session.scaler().settings().target_ms = target;

@@ -59,6 +59,8 @@ class ViewSession {
   float& exposure() { return exposure_; }
   // --shadow-rays: auto, all or one (FrameOptions::shadow_rays), from the panel too.
   std::string& shadow_rays() { return options_.frame.shadow_rays; }
+  // --moving-lights-in-history (FrameOptions), from the panel too.
+  bool& moving_lights_in_history() { return options_.frame.moving_lights_in_history; }
   // Temporal reuse and denoising, its parameters, and what the window shows (debug views).
   bool& denoise() { return denoise_; }
   Denoiser& denoiser() { return renderer_->denoiser(); }
