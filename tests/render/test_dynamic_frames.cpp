@@ -138,22 +138,37 @@ TEST(DynamicFrames, DirectLightAveragesAtRestAndRestartsOnAChange) {
   EXPECT_LT(err_avg, 0.5 * err_one);
 }
 
+// The Cornell box with a spot light above its tall block aimed at its left wall (x = 0) along
+// kWall, the scene's last light; the cone's inner and outer angles in degrees.
+const vec3 kWall(-1.0f, 0.0f, 0.0f);
+Scene cornell_with_wall_spot(float inner_deg, float outer_deg) {
+  Scene scene = make_cornell();
+  scene.lights.push_back(
+      Light::spot(vec3(0.278f, 0.45f, 0.28f), kWall, vec3(0.2f), inner_deg, outer_deg));
+  scene.derive();
+  return scene;
+}
+
+// Real-time frames of `size` x `size` pixels with the denoiser's history: one light sample.
+FrameSettings denoised_frame(int size) {
+  FrameSettings settings = small_frame();
+  settings.width = settings.height = size;
+  settings.light_samples = 1;
+  settings.accumulate = true;
+  settings.denoise = true;
+  return settings;
+}
+
 // A spot light turning to and fro on the Cornell box's left wall under a still camera: the
 // ceiling light's direct light everywhere else keeps averaging frame after frame as it does at
 // rest, since the change of lights reaches only the spot's cones (light_change_region). Clipping
 // every pixel's history to its noisy neighbourhood, as any other change of the world does, would
 // keep that light about as noisy as a few frames' average.
 TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
-  Scene scene = make_cornell();
-  const size_t spot = scene.lights.size();
-  const vec3 wall(-1.0f, 0.0f, 0.0f);
-  // Above the tall block, aimed at the wall at x = 0: no surface with x > 0.2 is in its cone.
-  scene.lights.push_back(Light::spot(vec3(0.278f, 0.45f, 0.28f), wall, vec3(0.2f), 8.0f, 12.0f));
-  scene.derive();
-  FrameSettings settings = small_frame();
-  settings.light_samples = 1;
-  settings.accumulate = true;
-  settings.denoise = true;
+  // No surface with x > 0.2 is in its cone.
+  Scene scene = cornell_with_wall_spot(8.0f, 12.0f);
+  const size_t spot = scene.lights.size() - 1;
+  const FrameSettings settings = denoised_frame(32);
   const int frames = 24;
   // Mean absolute luminance error of `image` against `reference` over the pixels whose surface
   // lies at x > 0.2, which the spot never lights.
@@ -169,7 +184,7 @@ TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
     return sum / std::max(count, 1);
   };
   const auto last_frame = [&](bool turning) {
-    scene.lights[spot].direction = wall;
+    scene.lights[spot].direction = kWall;
     auto tracer = make_embree_tracer(scene);
     Renderer renderer(scene, *tracer, make_technique("direct"));
     renderer.denoiser().settings().spatial = false;  // the history alone
@@ -178,7 +193,7 @@ TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
       if (turning) {
         const float turn = glm::radians(k % 2 == 0 ? 3.0f : -3.0f);
         scene.lights[spot].direction =
-            vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(wall, 0.0f));
+            vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
         renderer.scene_changed(SceneChange{{}, true, false});
       }
     }
@@ -188,7 +203,7 @@ TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
   const auto [rest, g] = last_frame(false);
   const auto [turning, g_turning] = last_frame(true);
   // Pixel centres, as the frames above sample them (render_image's frames are jittered).
-  scene.lights[spot].direction = wall;
+  scene.lights[spot].direction = kWall;
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_technique("direct"));
   FrameSettings one = settings;
@@ -211,21 +226,14 @@ TEST(DynamicFrames, ATurningSpotLeavesTheOtherLightsAveraging) {
 // where the spot points now. Averaged into the denoiser's history with the other lights, the
 // history inside its cones is clipped and kept two frames, and the beam lags and smears.
 TEST(DynamicFrames, AMovingSpotIsShownWhereItIs) {
-  Scene scene = make_cornell();
-  const size_t spot = scene.lights.size();
-  const vec3 wall(-1.0f, 0.0f, 0.0f);
-  scene.lights.push_back(Light::spot(vec3(0.278f, 0.45f, 0.28f), wall, vec3(0.2f), 18.0f, 25.0f));
-  scene.derive();
-  FrameSettings settings = small_frame();
-  settings.width = settings.height = 64;
-  settings.light_samples = 1;
-  settings.accumulate = true;
-  settings.denoise = true;
+  Scene scene = cornell_with_wall_spot(18.0f, 25.0f);
+  const size_t spot = scene.lights.size() - 1;
+  const FrameSettings settings = denoised_frame(64);
   const int frames = 16;
   const auto aim = [&](int k) {
     const float turn = glm::radians(-24.0f + 3.0f * float(k));
     scene.lights[spot].direction =
-        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(wall, 0.0f));
+        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
   };
   const auto last_frame = [&](bool apart) {
     aim(0);

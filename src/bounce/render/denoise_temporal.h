@@ -318,6 +318,27 @@ BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_
   }
 }
 
+// Calls f(q, mask) for the 3x3 pixels around pixel x of the row whose neighbour rows (y - 1, y,
+// y + 1) start at `rows`, row by row: q the pixel's index, mask 0 for one outside the image (a
+// row outside has `row_mask` 0 and reads row y; with kChecked a column outside, at the row's ends,
+// reads column x). Branch-free, for the CPU's vectorised row loops.
+template <bool kChecked, typename F>
+BOUNCE_HD BOUNCE_LANE_INLINE void for_neighbours(const size_t (&rows)[3],
+                                                 const float (&row_mask)[3], int x, int width,
+                                                 F&& f) {
+  unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
+    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
+    float mask = row_mask[dy + 1];
+    int qx = x + dx;
+    if constexpr (kChecked) {
+      const bool inside = (qx >= 0) & (qx < width);
+      mask = inside ? mask : 0.0f;
+      qx = inside ? qx : x;
+    }
+    f(rows[dy + 1] + size_t(qx), mask);
+  });
+}
+
 // neighbourhood() at pixel x of the row whose neighbour rows (y - 1, y, y + 1) start at `rows`,
 // from store_demodulated's planes: a row outside the image has `row_mask` 0 (and reads row y);
 // kChecked tests the columns (the row's ends). The same sums in the same order, branch-free.
@@ -328,16 +349,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
                                                              int width) {
   vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
   float n = 0.0f;
-  unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
-    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
-    float mask = row_mask[dy + 1];
-    int qx = x + dx;
-    if constexpr (kChecked) {
-      const bool inside = (qx >= 0) & (qx < width);
-      mask = inside ? mask : 0.0f;
-      qx = inside ? qx : x;
-    }
-    const size_t q = rows[dy + 1] + size_t(qx);
+  for_neighbours<kChecked>(rows, row_mask, x, width, [&](size_t q, float mask) {
     const float w = mask * v[6][q];
     const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
     d1 += d;
@@ -360,16 +372,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE ShownRange shown_range_planes(const float* const* v
                                                            const float (&row_mask)[3], int x,
                                                            int width) {
   ShownRange r;
-  unrolled<9>([&](auto k) BOUNCE_LANE_LAMBDA_INLINE {
-    constexpr int dx = decltype(k)::value % 3 - 1, dy = decltype(k)::value / 3 - 1;
-    float mask = row_mask[dy + 1];
-    int qx = x + dx;
-    if constexpr (kChecked) {
-      const bool inside = (qx >= 0) & (qx < width);
-      mask = inside ? mask : 0.0f;
-      qx = inside ? qx : x;
-    }
-    const size_t q = rows[dy + 1] + size_t(qx);
+  for_neighbours<kChecked>(rows, row_mask, x, width, [&](size_t q, float mask) {
     r.add(mask * v[6][q] != 0.0f, vec3(v[7][q], v[8][q], v[9][q]));
   });
   return r;

@@ -385,46 +385,46 @@ void DirectPass::row_tile(int x0, int y0, int x1, int y1) {
   RowSurfaces surfaces;
   RowSelection selection;
   const int width = x1 - x0;
+  bool glossy = false;  // whether any pixel of the row reflects specularly (RowSurfaces::load)
   for (int y = y0; y < y1; ++y) {
     const size_t i0 = view.index(x0, y);
-    // The row's samples of one light, from `row`, to their selections or the batch.
-    auto hand_off = [&] {
-      if (select) {
-        selection.offer(row, width);
-        return;
-      }
+    // The row's samples of one light, from `row`, each with its ray to the batch, adding to
+    // `to`'s pixels.
+    auto trace_row = [&](vec3* to) {
       for (int j = 0; j < width; ++j) {
         const vec3 radiance = row.radiance[j];
         if (max_component(radiance) > 0.0f)
           b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
-                pixels + i0 + size_t(j), tracer);
+                to + i0 + size_t(j), tracer);
       }
+    };
+    // The same to their selections or the batch.
+    auto hand_off = [&] {
+      if (select)
+        selection.offer(row, width);
+      else
+        trace_row(pixels);
+    };
+    auto shade_punctual = [&](const PunctualLane& light) {
+      if (glossy)
+        shade_punctual_row<true>(surfaces, width, light, row);
+      else
+        shade_punctual_row<false>(surfaces, width, light, row);
     };
     for (int j = 0; j < width; ++j) pixels[i0 + size_t(j)] = view.emission[i0 + size_t(j)];
     if (apart_pixels)
       for (int j = 0; j < width; ++j) apart_pixels[i0 + size_t(j)] = vec3(0.0f);
     if (select) selection.start(uint32_t(i0), width, settings_);
-    const bool glossy = surfaces.load(view, i0, width, eye_);
+    glossy = surfaces.load(view, i0, width, eye_);
     // The lights set apart: a ray of each one's own at every pixel it reaches.
     for (const PunctualLane& light : apart_) {
       if (surfaces.outside(light)) continue;
-      if (glossy)
-        shade_punctual_row<true>(surfaces, width, light, row);
-      else
-        shade_punctual_row<false>(surfaces, width, light, row);
-      for (int j = 0; j < width; ++j) {
-        const vec3 radiance = row.radiance[j];
-        if (max_component(radiance) > 0.0f)
-          b.add(shadow_ray(surfaces.origin[j], row.wi[j], row.distance[j]), radiance,
-                apart_pixels + i0 + size_t(j), tracer);
-      }
+      shade_punctual(light);
+      trace_row(apart_pixels);
     }
     for (const PunctualLane& light : punctual_) {
       if (surfaces.outside(light)) continue;
-      if (glossy)
-        shade_punctual_row<true>(surfaces, width, light, row);
-      else
-        shade_punctual_row<false>(surfaces, width, light, row);
+      shade_punctual(light);
       hand_off();
     }
     for (uint32_t a = 0; a < scene.area_light_count; ++a) {
