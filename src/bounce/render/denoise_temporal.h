@@ -349,18 +349,19 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
                                                              int width) {
   vec3 d1(0.0f), d2(0.0f), i1(0.0f), i2(0.0f);
   float n = 0.0f;
-  for_neighbours<kChecked>(rows, row_mask, x, width, [&](size_t q, float mask) {
-    const float w = mask * v[6][q];
-    const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
-    d1 += d;
-    d2 += d * d;
-    if constexpr (kIndirect) {
-      const vec3 ind = w * vec3(v[3][q], v[4][q], v[5][q]);
-      i1 += ind;
-      i2 += ind * ind;
-    }
-    n += w;
-  });
+  for_neighbours<kChecked>(rows, row_mask, x, width,
+                           [&](size_t q, float mask) BOUNCE_LANE_LAMBDA_INLINE {
+                             const float w = mask * v[6][q];
+                             const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
+                             d1 += d;
+                             d2 += d * d;
+                             if constexpr (kIndirect) {
+                               const vec3 ind = w * vec3(v[3][q], v[4][q], v[5][q]);
+                               i1 += ind;
+                               i2 += ind * ind;
+                             }
+                             n += w;
+                           });
   return {color_box(n, d1, d2), color_box(n, i1, i2)};
 }
 
@@ -372,9 +373,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE ShownRange shown_range_planes(const float* const* v
                                                            const float (&row_mask)[3], int x,
                                                            int width) {
   ShownRange r;
-  for_neighbours<kChecked>(rows, row_mask, x, width, [&](size_t q, float mask) {
-    r.add(mask * v[6][q] != 0.0f, vec3(v[7][q], v[8][q], v[9][q]));
-  });
+  for_neighbours<kChecked>(rows, row_mask, x, width,
+                           [&](size_t q, float mask) BOUNCE_LANE_LAMBDA_INLINE {
+                             r.add(mask * v[6][q] != 0.0f, vec3(v[7][q], v[8][q], v[9][q]));
+                           });
   return r;
 }
 
