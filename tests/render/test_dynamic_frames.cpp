@@ -282,5 +282,52 @@ TEST(DynamicFrames, AMovingSpotIsShownWhereItIs) {
   EXPECT_LT(e_apart, 0.5 * e_history) << e_apart << " " << e_history;
 }
 
+// The same spot sweeping for nine frames, then still: the frame of its last move and the two
+// after it show its beam as brightly as its converged light. Its light is back in the denoiser's
+// history, which did not hold it while it moved: the history in its cone is clipped to the frame
+// that stops, as after a change of lights, rather than averaged from nothing over the frames
+// before.
+TEST(DynamicFrames, ASpotThatStopsMovingStaysLit) {
+  Scene scene = cornell_with_wall_spot(18.0f, 25.0f);
+  const size_t spot = scene.lights.size() - 1;
+  const FrameSettings settings = denoised_frame(64);
+  const auto aim = [&](int k) {
+    const float turn = glm::radians(-24.0f + 3.0f * float(k));
+    scene.lights[spot].direction =
+        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
+  };
+  aim(0);
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_technique("direct"));
+  for (int k = 0; k < 8; ++k) {
+    renderer.render(scene.camera, settings);
+    aim(k + 1);
+    renderer.scene_changed(SceneChange{{}, true, false});
+  }
+  std::vector<Image> still;
+  for (int k = 0; k < 3; ++k) still.push_back(renderer.render(scene.camera, settings).direct);
+  const GBuffer g = renderer.render(scene.camera, settings).gbuffer;
+  auto fresh_tracer = make_embree_tracer(scene);
+  Renderer converged(scene, *fresh_tracer, make_technique("direct"));
+  FrameSettings many = settings;
+  many.denoise = false;
+  many.light_samples = 256;
+  for (int k = 0; k < 7; ++k) converged.render(scene.camera, many);
+  const Image reference = converged.render(scene.camera, many).direct;
+  const Light l = scene.lights[spot];
+  for (size_t f = 0; f < still.size(); ++f) {
+    double got = 0.0, want = 0.0;
+    for (size_t i = 0; i < g.size(); ++i)
+      if (g.hit(i) &&
+          in_cone(g.position[i], l.position, glm::normalize(l.direction), l.cos_inner)) {
+        got += double(luminance(still[f].pixels()[i]));
+        want += double(luminance(reference.pixels()[i]));
+      }
+    EXPECT_GT(want, 0.0);
+    // (Without the clip, the frames after the stop show 0.24 and 0.30 of it.)
+    EXPECT_NEAR(got / want, 1.0, 0.2) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace bounce

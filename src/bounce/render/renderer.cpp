@@ -104,7 +104,20 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   f.times.clear();
   std::vector<std::string> parameters = parameter_state(settings);
   f.change = change_since_last(camera, settings, parameters, false);
-  const HistoryState history = history_state(f.change, settings);
+  // The lights set apart this frame (moved point, spot and directional lights), and the lights as
+  // the denoiser's history holds them (those set apart dark). A light that stops moving goes back
+  // into a history that lacks its light: for the denoiser that is a change of lights (its cone is
+  // clipped, light_change_region), though the scene's lights did not change.
+  std::vector<LightRecord> lights(scene_.lights.begin(), scene_.lights.end());
+  const bool keeps_history = settings.denoise && denoiser_.settings().temporal;
+  const LightsApart apart =
+      settings.moving_lights_apart && keeps_history && !device_ && !f.change.everything
+          ? moved_punctual_lights(last_lights_, lights)
+          : LightsApart{};
+  std::vector<LightRecord> history_lights = lights_in_history(lights, apart);
+  SceneChange history_change = f.change;
+  history_change.lights |= history_lights != last_history_lights_ && !last_history_lights_.empty();
+  const HistoryState history = history_state(history_change, settings);
   pending_ = SceneChange{};
   last_camera_ = camera;
   last_width_ = settings.width;
@@ -112,21 +125,14 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
   last_parameters_ = std::move(parameters);
   last_denoise_ = denoiser_.settings();
   const SceneChange& change = f.change;
-  // The lights set apart this frame, and where the change reached the direct light the
-  // history holds, for the denoiser's clip: when nothing but lights changed, only the cones of
-  // the spots that moved (a carried flashlight) or went into or out of the history.
-  std::vector<LightRecord> lights(scene_.lights.begin(), scene_.lights.end());
-  const bool keeps_history = settings.denoise && denoiser_.settings().temporal;
-  const LightsApart apart =
-      settings.moving_lights_apart && keeps_history && !device_ && !change.everything
-          ? moved_punctual_lights(last_lights_, lights)
-          : LightsApart{};
-  std::vector<LightRecord> history_lights = lights_in_history(lights, apart);
+  // Where the change reached the direct light the history holds, for the denoiser's clip: when
+  // nothing but lights changed, only the cones of the spots that moved (a carried flashlight) or
+  // went into or out of the history.
   const LightChangeRegion direct_region =
-      light_change_region(change, last_history_lights_, history_lights);
+      light_change_region(history_change, last_history_lights_, history_lights);
   last_lights_ = std::move(lights);
   last_history_lights_ = std::move(history_lights);
-  const bool rest = settings.accumulate && !change.any();
+  const bool rest = settings.accumulate && !history_change.any();
   rest_frames_ = rest ? rest_frames_ + 1 : 1;
   // The denoiser's temporal part takes over the averaging at rest.
   const bool average = !(settings.denoise && denoiser_.settings().temporal);
