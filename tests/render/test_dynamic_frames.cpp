@@ -159,6 +159,25 @@ FrameSettings denoised_frame(int size) {
   return settings;
 }
 
+// Aims cornell_with_wall_spot's spot at frame k of a sweep across the wall, 3 degrees a frame.
+void sweep(Light& spot, int k) {
+  const float turn = glm::radians(-24.0f + 3.0f * float(k));
+  spot.direction =
+      vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
+}
+
+// The direct light of `scene` seen from its camera in `settings`' size, converged: eight frames
+// of 256 samples a light, averaged.
+Image converged_direct(const Scene& scene, FrameSettings settings) {
+  auto tracer = make_embree_tracer(scene);
+  Renderer renderer(scene, *tracer, make_technique("direct"));
+  settings.denoise = false;
+  settings.accumulate = true;
+  settings.light_samples = 256;
+  for (int k = 0; k < 7; ++k) renderer.render(scene.camera, settings);
+  return renderer.render(scene.camera, settings).direct;
+}
+
 // A spot light turning to and fro on the Cornell box's left wall under a still camera: the
 // ceiling light's direct light everywhere else keeps averaging frame after frame as it does at
 // rest, since the change of lights reaches only the spot's cones (light_change_region). Clipping
@@ -230,11 +249,7 @@ TEST(DynamicFrames, AMovingSpotIsShownWhereItIs) {
   const size_t spot = scene.lights.size() - 1;
   const FrameSettings settings = denoised_frame(64);
   const int frames = 16;
-  const auto aim = [&](int k) {
-    const float turn = glm::radians(-24.0f + 3.0f * float(k));
-    scene.lights[spot].direction =
-        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
-  };
+  const auto aim = [&](int k) { sweep(scene.lights[spot], k); };
   const auto last_frame = [&](bool apart) {
     aim(0);
     auto tracer = make_embree_tracer(scene);
@@ -251,14 +266,7 @@ TEST(DynamicFrames, AMovingSpotIsShownWhereItIs) {
   };
   const auto [apart, g] = last_frame(true);
   const auto [in_history, g_history] = last_frame(false);
-  // The last pose converged.
-  auto tracer = make_embree_tracer(scene);
-  Renderer renderer(scene, *tracer, make_technique("direct"));
-  FrameSettings many = settings;
-  many.denoise = false;
-  many.light_samples = 256;
-  for (int k = 0; k < 7; ++k) renderer.render(scene.camera, many);
-  const Image reference = renderer.render(scene.camera, many).direct;
+  const Image reference = converged_direct(scene, settings);  // the last pose
   // Mean absolute luminance error where the beam is or was two frames before.
   const Light now = scene.lights[spot];
   aim(frames - 3);
@@ -291,11 +299,7 @@ TEST(DynamicFrames, ASpotThatStopsMovingStaysLit) {
   Scene scene = cornell_with_wall_spot(18.0f, 25.0f);
   const size_t spot = scene.lights.size() - 1;
   const FrameSettings settings = denoised_frame(64);
-  const auto aim = [&](int k) {
-    const float turn = glm::radians(-24.0f + 3.0f * float(k));
-    scene.lights[spot].direction =
-        vec3(glm::rotate(glm::mat4(1.0f), turn, vec3(0.0f, 1.0f, 0.0f)) * vec4(kWall, 0.0f));
-  };
+  const auto aim = [&](int k) { sweep(scene.lights[spot], k); };
   aim(0);
   auto tracer = make_embree_tracer(scene);
   Renderer renderer(scene, *tracer, make_technique("direct"));
@@ -307,13 +311,7 @@ TEST(DynamicFrames, ASpotThatStopsMovingStaysLit) {
   std::vector<Image> still;
   for (int k = 0; k < 3; ++k) still.push_back(renderer.render(scene.camera, settings).direct);
   const GBuffer g = renderer.render(scene.camera, settings).gbuffer;
-  auto fresh_tracer = make_embree_tracer(scene);
-  Renderer converged(scene, *fresh_tracer, make_technique("direct"));
-  FrameSettings many = settings;
-  many.denoise = false;
-  many.light_samples = 256;
-  for (int k = 0; k < 7; ++k) converged.render(scene.camera, many);
-  const Image reference = converged.render(scene.camera, many).direct;
+  const Image reference = converged_direct(scene, settings);
   const Light l = scene.lights[spot];
   for (size_t f = 0; f < still.size(); ++f) {
     double got = 0.0, want = 0.0;
