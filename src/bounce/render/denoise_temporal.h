@@ -290,7 +290,7 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
 
 // This frame's demodulated light as planes, for the CPU's clipped rows (their loops then
 // vectorise): direct rgb, indirect rgb, each pixel's weight in a neighbourhood (1 with a
-// surface, 0 without), and with kExact its shown_emission rgb.
+// surface, 0 without), and with kExact its shown_demodulated rgb.
 inline constexpr int kDemodulatedPlanes = 10;
 template <bool kIndirect, bool kExact>
 BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_t i,
