@@ -253,7 +253,7 @@ BOUNCE_HD void direct_pixel_resampled(const SceneView& scene, const LightPickerV
       if (!(pmf > 0.0f)) continue;
       // The environment and the lights set apart are sampled apart (below): as candidates
       // their target is 0, so the resampled estimate covers the other lights alone and stays
-      // unbiased for them.
+      // unbiased for them. (The renderer's picker never draws the lights set apart.)
       if (int32_t(entry) == scene.environment ||
           (entry < picker.light_count && settings.is_apart(entry)))
         continue;

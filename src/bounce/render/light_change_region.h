@@ -4,6 +4,7 @@
 // through a level leaves the long averages of the level's still lights alone.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -61,6 +62,11 @@ struct LightsApart {
   static constexpr int kMax = 2;
   uint32_t index[kMax] = {};
   int count = 0;
+
+  std::span<const uint32_t> indices() const { return {index, size_t(count)}; }
+  bool operator==(const LightsApart& o) const {
+    return std::equal(indices().begin(), indices().end(), o.indices().begin(), o.indices().end());
+  }
 };
 LightsApart moved_punctual_lights(std::span<const LightRecord> before,
                                   std::span<const LightRecord> after);

@@ -12,7 +12,7 @@ float pick_weight(vec3 power) {
 
 }  // namespace
 
-LightPicker LightPicker::build(const Scene& scene) {
+LightPicker LightPicker::build(const Scene& scene, std::span<const uint32_t> left_out) {
   LightPicker p;
   p.light_count = uint32_t(scene.lights.size());
   const float scene_radius = 0.5f * scene.bounds.diagonal();
@@ -21,6 +21,8 @@ LightPicker LightPicker::build(const Scene& scene) {
     weights.push_back(pick_weight(l.power(scene_radius)));
     if (l.type == LightType::kSphere) p.has_sphere_lights = true;
   }
+  for (uint32_t l : left_out)
+    if (l < p.light_count) weights[l] = 0.0;
   for (const AreaLight& a : scene.area_lights) weights.push_back(pick_weight(a.power()));
   double total = 0.0;
   for (double w : weights) total += w;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -38,7 +39,9 @@ struct LightPicker {
   std::vector<int32_t> area_light_of_triangle;
   bool has_sphere_lights = false;
 
-  static LightPicker build(const Scene& scene);
+  // `left_out`: Scene::lights indices picked never (weight 0), as the lights the direct pass
+  // shades apart, so that no candidate is spent on them.
+  static LightPicker build(const Scene& scene, std::span<const uint32_t> left_out = {});
 
   LightPickerView view() const {
     return {cdf.data(), pmf.data(), uint32_t(cdf.size()), light_count};

@@ -146,9 +146,12 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
       scene_data_.refresh(scene_, change.moved_meshes);
     else
       scene_data_.forget_motion();  // moved meshes of an earlier frame stand still now
-    // Light powers change with lights, emissive materials and the area of moved emitters.
-    if (change.everything || change.geometry() || change.lights || change.materials)
-      lights_ = LightPicker::build(scene_);
+    // Light powers change with lights, emissive materials and the area of moved emitters; the
+    // lights set apart take no candidates from the others.
+    if (change.everything || change.geometry() || change.lights || change.materials ||
+        apart != picker_apart_)
+      lights_ = LightPicker::build(scene_, apart.indices());
+    picker_apart_ = apart;
   }
   f.times.add("scene", pose_ms_);
   pose_ms_ = 0.0;

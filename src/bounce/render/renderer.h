@@ -139,8 +139,9 @@ class Renderer {
 
   const Scene& scene_;
   Tracer& tracer_;
-  SceneData scene_data_;  // the scene as the G-buffer and direct-light kernels read it
-  LightPicker lights_;    // lights by power: direct light's candidates in many-light scenes
+  SceneData scene_data_;      // the scene as the G-buffer and direct-light kernels read it
+  LightPicker lights_;        // lights by power: direct light's candidates in many-light scenes
+  LightsApart picker_apart_;  // the lights `lights_` leaves out (those last set apart)
   std::unique_ptr<Technique> technique_;
   Frame frame_;
   uint32_t frame_index_ = 0;

@@ -161,6 +161,12 @@ TEST(PathSampling, LightPickerFollowsPower) {
     EXPECT_EQ(k, u < 0.5f ? 0u : 2u) << u;
   }
   for (uint32_t t = 0; t < s.triangle_count(); ++t) EXPECT_EQ(picker.area_light_of_triangle[t], 0);
+  // A light left out (one the direct pass shades apart): the others share its probability.
+  const uint32_t left_out[] = {0};
+  const LightPicker without = LightPicker::build(s, left_out);
+  EXPECT_EQ(without.light_pmf(0), 0.0f);
+  EXPECT_NEAR(without.area_light_pmf(0), 1.0f, 1e-6f);
+  for (float u : {0.0f, 0.5f, 0.99999994f}) EXPECT_EQ(without.pick(u), 2u) << u;
 }
 
 // Reflected radiance at a surface point with no geometry of its own, direct light only.
