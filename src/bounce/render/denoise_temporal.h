@@ -292,6 +292,7 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
 // vectorise): direct rgb, indirect rgb, each pixel's weight in a neighbourhood (1 with a
 // surface, 0 without), and with kExact its shown_demodulated rgb.
 inline constexpr int kDemodulatedPlanes = 10;
+inline constexpr int kDemodulatedLightPlanes = 7;  // those without exact light
 template <bool kIndirect, bool kExact>
 BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_t i,
                                                     float* const* v) {

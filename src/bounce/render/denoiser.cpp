@@ -51,10 +51,21 @@ struct Planes {
   size_t pixels = 0;
   void resize(size_t n) {
     pixels = n;
-    for (int k = 0; k < kCount; ++k) {
-      offset[size_t(k)] = next_plane_offset();
-      planes[size_t(k)].assign(n + offset[size_t(k)] + kPlanePadding, 0.0f);
+    for (int k = 0; k < kCount; ++k) size_plane(k);
+  }
+  // The first `count` planes sized for n pixels; planes past them already sized for n are kept
+  // (a frame that needs fewer does not free them), the others left empty.
+  void fit(size_t n, int count) {
+    if (pixels != n) {
+      for (std::vector<float>& p : planes) p = {};
+      pixels = n;
     }
+    for (int k = 0; k < count; ++k)
+      if (planes[size_t(k)].empty()) size_plane(k);
+  }
+  void size_plane(int k) {
+    offset[size_t(k)] = next_plane_offset();
+    planes[size_t(k)].assign(pixels + offset[size_t(k)] + kPlanePadding, 0.0f);
   }
   float* operator[](int k) { return planes[size_t(k)].data() + offset[size_t(k)]; }
   const float* operator[](int k) const { return planes[size_t(k)].data() + offset[size_t(k)]; }
@@ -848,9 +859,12 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.prev_rest = {std::as_const(b.prev_rest).rgb(0), std::as_const(b.prev_rest).rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     if (temporal_settings.history && temporal_settings.clip) {
-      // (Sized on the first frame that needs them: a still or camera-only scene never does.)
-      if (b.demodulated.pixels != n) b.demodulated.resize(n);
-      for (int k = 0; k < denoise::kDemodulatedPlanes; ++k) demodulated[k] = b.demodulated[k];
+      // (Sized on the first frame that needs them: a still or camera-only scene never does, and
+      // the exact light's on the first frame with exact light.)
+      const int planes =
+          temporal.exact ? denoise::kDemodulatedPlanes : denoise::kDemodulatedLightPlanes;
+      b.demodulated.fit(n, planes);
+      for (int k = 0; k < planes; ++k) demodulated[k] = b.demodulated[k];
       has_indirect ? demodulate_pass<true>(temporal, demodulated)
                    : demodulate_pass<false>(temporal, demodulated);
     }
