@@ -105,9 +105,22 @@ TEST(LightsApart, AreThePunctualLightsThatMoved) {
   EXPECT_EQ(a.index[1], 3u);
   EXPECT_EQ(moved_punctual_lights(records({kSpot}), records({kSpot})).count, 0);
   EXPECT_EQ(moved_punctual_lights(records({kSpot}), records({kSpot, t})).count, 0);
-  EXPECT_EQ(
-      moved_punctual_lights(records({kStill, kSpot, kSpot}), records({moved_point, t, t})).count,
-      0);
+  // More than two moved: the point light first (in the history it would reach every pixel),
+  // then the spot of the most power; the other spot stays in the history.
+  Light dim = t, bright = t;
+  dim.intensity *= 0.5f;
+  bright.intensity *= 2.0f;
+  const LightsApart three = moved_punctual_lights(records({kSpot, kStill, kSpot, kSpot}),
+                                                  records({dim, moved_point, bright, t}));
+  ASSERT_EQ(three.count, 2);
+  EXPECT_EQ(three.index[0], 1u);
+  EXPECT_EQ(three.index[1], 2u);
+  // Spots alike: the first ones, frame after frame.
+  const LightsApart alike =
+      moved_punctual_lights(records({kSpot, kSpot, kSpot}), records({t, t, t}));
+  ASSERT_EQ(alike.count, 2);
+  EXPECT_EQ(alike.index[0], 0u);
+  EXPECT_EQ(alike.index[1], 1u);
 }
 
 // The history holds the lights set apart as dark records: a spot set apart in both frames

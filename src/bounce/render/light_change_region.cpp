@@ -1,5 +1,8 @@
 #include "bounce/render/light_change_region.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace bounce {
 
 LightChangeRegion light_change_region(std::span<const LightRecord> before,
@@ -27,12 +30,24 @@ LightsApart moved_punctual_lights(std::span<const LightRecord> before,
                                   std::span<const LightRecord> after) {
   LightsApart apart;
   if (before.size() != after.size()) return apart;
-  for (size_t k = 0; k < after.size(); ++k) {
-    if (before[k] == after[k] || !is_punctual(after[k].type) || before[k].type != after[k].type)
-      continue;
-    if (apart.count == LightsApart::kMax) return LightsApart{};
-    apart.index[apart.count++] = uint32_t(k);
+  std::vector<uint32_t> moved;
+  for (size_t k = 0; k < after.size(); ++k)
+    if (before[k] != after[k] && is_punctual(after[k].type) && before[k].type == after[k].type)
+      moved.push_back(uint32_t(k));
+  if (moved.size() > size_t(LightsApart::kMax)) {
+    // Spots last, then by power (a directional light's by its irradiance: the scene's size is
+    // the same for all); ties by index, so the choice holds from frame to frame.
+    const auto rank = [&](uint32_t k) {
+      const LightRecord& l = after[k];
+      const vec3 p = l.power(1.0f);
+      return std::pair(l.type == LightType::kSpot, -(p.x + p.y + p.z));
+    };
+    std::stable_sort(moved.begin(), moved.end(),
+                     [&](uint32_t a, uint32_t b) { return rank(a) < rank(b); });
+    moved.resize(size_t(LightsApart::kMax));
+    std::sort(moved.begin(), moved.end());
   }
+  for (uint32_t k : moved) apart.index[apart.count++] = k;
   return apart;
 }
 

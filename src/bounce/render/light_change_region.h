@@ -57,7 +57,9 @@ LightChangeRegion light_change_region(std::span<const LightRecord> before,
 
 // The point, spot and directional lights that differ between two frames' records (`before` the
 // last frame's), which the renderer shades apart from the denoiser's history
-// (DirectSettings::apart): none when more moved than this holds, or the light count changed.
+// (DirectSettings::apart); none when the light count changed. When more moved than this holds,
+// the point and directional lights first (in the history their change would reach every pixel,
+// a spot's only its cones), then the most powerful spots; the others stay in the history.
 struct LightsApart {
   static constexpr int kMax = 2;
   uint32_t index[kMax] = {};
