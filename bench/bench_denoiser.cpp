@@ -138,7 +138,8 @@ void BM_Denoiser(benchmark::State& state) {
   int frame = 0;
   auto run = [&](HistoryState history) {
     times.clear();
-    denoiser.run({f.g, history, false, times}, f.direct, with_indirect ? &f.indirect : nullptr);
+    denoiser.run({f.g, history, IndirectHistory::kPerFrame, times}, f.direct,
+                 with_indirect ? &f.indirect : nullptr);
   };
   // A history to reproject: 32 frames of camera motion.
   for (; frame < 32; ++frame) {

@@ -81,7 +81,7 @@ void expect_same(const Image& gpu, const Image& cpu, const Image& raw, const cha
       << what << " frame " << frame;
 }
 
-void compare_sequence(bool with_indirect, bool accumulated, int indirect_resolution) {
+void compare_sequence(bool with_indirect, IndirectHistory history, int indirect_resolution) {
   if (!cuda_device_info().available) GTEST_SKIP() << "no CUDA GPU: " << cuda_device_info().reason;
   const Scene scene = make_cornell();
   const auto tracer = make_embree_tracer(scene);
@@ -121,9 +121,9 @@ void compare_sequence(bool with_indirect, bool accumulated, int indirect_resolut
     Image gpu_direct = raw_direct, gpu_indirect = raw_indirect;
     StageTimes times;
     const LightChangeRegion region = f == 5 ? spot : LightChangeRegion::all();
-    cpu.run({g, state, accumulated, times, true, region}, cpu_direct,
+    cpu.run({g, state, history, times, true, region}, cpu_direct,
             with_indirect ? &cpu_indirect : nullptr);
-    gpu.run(settings, g, state, accumulated, gpu_direct, with_indirect ? &gpu_indirect : nullptr,
+    gpu.run(settings, g, state, history, gpu_direct, with_indirect ? &gpu_indirect : nullptr,
             region);
     expect_same(gpu_direct, cpu_direct, raw_direct, "direct", f);
     if (with_indirect) expect_same(gpu_indirect, cpu_indirect, raw_indirect, "indirect", f);
@@ -131,15 +131,19 @@ void compare_sequence(bool with_indirect, bool accumulated, int indirect_resolut
 }
 
 TEST(DeviceDenoiser, DirectLightMatchesTheCpu) {
-  compare_sequence(false, false, 2);
+  compare_sequence(false, IndirectHistory::kPerFrame, 2);
 }
 
 TEST(DeviceDenoiser, HalfResolutionIndirectLightMatchesTheCpu) {
-  compare_sequence(true, false, 2);
+  compare_sequence(true, IndirectHistory::kPerFrame, 2);
 }
 
 TEST(DeviceDenoiser, FullResolutionAccumulatedIndirectLightMatchesTheCpu) {
-  compare_sequence(true, true, 1);
+  compare_sequence(true, IndirectHistory::kAccumulated, 1);
+}
+
+TEST(DeviceDenoiser, IndirectLightFromARingMatchesTheCpu) {
+  compare_sequence(true, IndirectHistory::kRing, 2);
 }
 
 }  // namespace

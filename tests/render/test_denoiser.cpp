@@ -64,10 +64,10 @@ struct Output {
   Image direct, indirect;
 };
 Output run(Denoiser& d, const GBuffer& g, HistoryState state, const Image& direct,
-           const Image* indirect = nullptr, bool accumulated = false) {
+           const Image* indirect = nullptr, IndirectHistory history = IndirectHistory::kPerFrame) {
   StageTimes times;
   Output out{direct, indirect ? *indirect : Image()};
-  d.run({g, state, accumulated, times}, out.direct, indirect ? &out.indirect : nullptr);
+  d.run({g, state, history, times}, out.direct, indirect ? &out.indirect : nullptr);
   return out;
 }
 
@@ -621,8 +621,10 @@ TEST(Denoiser, ResetsWhoseHistoryNoFrameContinuesGiveTheSameFrames) {
     const Image indirect = noisy(w, h, rng, 0.8f, [](int, int) { return 0.3f; });
     StageTimes times;
     Output a{direct, indirect}, b{direct, indirect};
-    kept.run({g, HistoryState::kReset, false, times, true}, a.direct, &a.indirect);
-    dropped.run({g, HistoryState::kReset, false, times, false}, b.direct, &b.indirect);
+    kept.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times, true}, a.direct,
+             &a.indirect);
+    dropped.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times, false}, b.direct,
+                &b.indirect);
     ASSERT_EQ(a.direct.pixels(), b.direct.pixels()) << k;
     ASSERT_EQ(a.indirect.pixels(), b.indirect.pixels()) << k;
   }
@@ -642,7 +644,8 @@ TEST(Denoiser, AccumulatedIndirectLightKeepsItsCap) {
     for (int k = 0; k < 8; ++k) {
       const float v = float(k * k);
       const Image light = image_of(4, 4, [&](int, int) { return vec3(v); });
-      out = run(d, g, k == 0 ? HistoryState::kReset : state, light, &light, true);
+      out = run(d, g, k == 0 ? HistoryState::kReset : state, light, &light,
+                IndirectHistory::kAccumulated);
       // Direct: the mean of all frames; indirect: alpha = 1 / (min(n, cap) + 1).
       expected_d += (v - expected_d) / float(k + 1);
       expected_i += (v - expected_i) / float(std::min(k, cap) + 1);
@@ -739,8 +742,8 @@ TEST(Denoiser, ExactLightIsClampedToItsNeighbourhood) {
     });
     StageTimes times;
     out = direct;
-    DenoiseFrame frame{g, k == 0 ? HistoryState::kReset : HistoryState::kWorldChanged, false,
-                       times};
+    DenoiseFrame frame{g, k == 0 ? HistoryState::kReset : HistoryState::kWorldChanged,
+                       IndirectHistory::kPerFrame, times};
     frame.exact = &exact;
     d.run(frame, out, nullptr);
     for (int x = 0; x < w; ++x) {
@@ -993,10 +996,11 @@ TEST(Denoiser, ASpotLightsChangeClipsDirectLightOnlyInItsCone) {
   d.settings().spatial = false;
   StageTimes times;
   Image direct = old_light, indirect = old_light;
-  d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
+  d.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times}, direct, &indirect);
   direct = light;
   indirect = light;
-  d.run({g, HistoryState::kWorldChanged, false, times, true, cone}, direct, &indirect);
+  d.run({g, HistoryState::kWorldChanged, IndirectHistory::kPerFrame, times, true, cone}, direct,
+        &indirect);
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
       const std::string where = std::to_string(x) + "," + std::to_string(y);
@@ -1006,6 +1010,96 @@ TEST(Denoiser, ASpotLightsChangeClipsDirectLightOnlyInItsCone) {
       else
         expect_near_rel(direct.at(x, y), 0.5f * (vec3(100.0f) + light.at(x, y)), 1e-4f, where);
       EXPECT_LT(indirect.at(x, y).x, 1.5f) << where;
+    }
+  }
+}
+
+// A region of no cones (a flashlight shaded apart moved: the history's lights did not change)
+// clips no direct light: the same frames as a cone that reaches no pixel, direct light's history
+// kept everywhere, indirect light's clipped everywhere.
+TEST(Denoiser, ARegionOfNoConesClipsNoDirectLight) {
+  const int n = 12;
+  const GBuffer g = plane(n, n);                       // pixel (x, y) sees the point (x, y, 1)
+  LightChangeRegion away = LightChangeRegion::none();  // a narrow cone facing away from the plane
+  away.cones = 1;
+  away.apex[0] = vec3(6.0f, 5.5f, 0.0f);
+  away.axis[0] = vec3(0.0f, 0.0f, -1.0f);
+  away.cos_outer[0] = std::cos(glm::radians(10.0f));
+  const Image old_light = image_of(n, n, [](int, int) { return vec3(100.0f); });
+  Pcg32 rng(23);
+  const Image light = image_of(n, n, [&](int, int) {
+    return vec3(1.0f) + 0.2f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+  });
+  Output frames[2];
+  const LightChangeRegion regions[2] = {LightChangeRegion::none(), away};
+  for (int r = 0; r < 2; ++r) {
+    Denoiser d;
+    d.settings().spatial = false;
+    StageTimes times;
+    Image direct = old_light, indirect = old_light;
+    d.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times}, direct, &indirect);
+    frames[r] = {light, light};
+    d.run({g, HistoryState::kWorldChanged, IndirectHistory::kPerFrame, times, true, regions[r]},
+          frames[r].direct, &frames[r].indirect);
+  }
+  EXPECT_EQ(frames[0].direct.pixels(), frames[1].direct.pixels());
+  EXPECT_EQ(frames[0].indirect.pixels(), frames[1].indirect.pixels());
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const std::string where = std::to_string(x) + "," + std::to_string(y);
+      expect_near_rel(frames[0].direct.at(x, y), 0.5f * (vec3(100.0f) + light.at(x, y)), 1e-4f,
+                      where);
+      EXPECT_LT(frames[0].indirect.at(x, y).x, 1.5f) << where;
+    }
+}
+
+// Indirect light from a technique's ring of frames (IndirectHistory::kRing) keeps no history
+// while the world changes, this frame's light exactly, and keeps one again while only the camera
+// moves; per-frame indirect light keeps its clipped history.
+TEST(Denoiser, IndirectLightFromARingKeepsNoHistoryWhileTheWorldChanges) {
+  const int n = 12;
+  const GBuffer g = plane(n, n);
+  const Image old_light = image_of(n, n, [](int, int) { return vec3(100.0f); });
+  Pcg32 rng(29);
+  auto noisy = [&] {
+    return image_of(n, n, [&](int, int) {
+      return vec3(1.0f) + 0.2f * vec3(rng.next_float(), rng.next_float(), rng.next_float());
+    });
+  };
+  const Image light = noisy(), moved = noisy();
+  for (const IndirectHistory history : {IndirectHistory::kRing, IndirectHistory::kPerFrame}) {
+    Denoiser d;
+    d.settings().spatial = false;
+    StageTimes times;
+    Image direct = old_light, indirect = old_light;
+    d.run({g, HistoryState::kReset, history, times}, direct, &indirect);
+    direct = light;
+    indirect = light;
+    d.run({g, HistoryState::kWorldChanged, history, times, true, LightChangeRegion::none()}, direct,
+          &indirect);
+    Image direct2 = moved, indirect2 = moved;
+    d.run({g, HistoryState::kCameraMoved, history, times}, direct2, &indirect2);
+    const bool ring = history == IndirectHistory::kRing;
+    float off = 0.0f;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const std::string where =
+            std::to_string(x) + "," + std::to_string(y) + (ring ? " ring" : "");
+        // Direct light keeps its history (no cone changed) either way.
+        expect_near_rel(direct.at(x, y), 0.5f * (vec3(100.0f) + light.at(x, y)), 1e-4f, where);
+        if (ring) {
+          expect_near_rel(indirect.at(x, y), light.at(x, y), 1e-5f, where);
+          // The camera moved: history lengths 0, 1, then 2 (alpha 1/3) from this light.
+          expect_near_rel(indirect2.at(x, y),
+                          light.at(x, y) + (moved.at(x, y) - light.at(x, y)) / 3.0f, 1e-4f, where);
+        } else {
+          off += std::fabs(indirect.at(x, y).x - light.at(x, y).x);
+        }
+      }
+    // Per-frame light: the old light's history, clipped into this frame's neighbourhood, still
+    // weighs half (about 0.03 from this frame's light on average).
+    if (!ring) {
+      EXPECT_GT(off / float(n * n), 0.01f);
     }
   }
 }
@@ -1331,7 +1425,7 @@ TEST(Denoiser, RecordsItsSubStages) {
       d.settings().indirect_resolution = indirect_resolution;
       StageTimes times;
       Image direct(4, 4, vec3(1.0f)), indirect(4, 4, vec3(0.5f));
-      d.run({g, HistoryState::kReset, false, times}, direct, &indirect);
+      d.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times}, direct, &indirect);
       std::set<std::string> names;
       for (const StageTime& s : times.stages()) names.insert(s.name);
       std::set<std::string> expected{"denoise/temporal", "denoise/variance", "denoise/atrous"};
@@ -1350,7 +1444,8 @@ TEST(Denoiser, RefusesImagesOfAnotherSize) {
   Denoiser d;
   StageTimes times;
   Image direct(4, 3);
-  EXPECT_THROW(d.run({g, HistoryState::kReset, false, times}, direct, nullptr), Error);
+  EXPECT_THROW(d.run({g, HistoryState::kReset, IndirectHistory::kPerFrame, times}, direct, nullptr),
+               Error);
 }
 
 }  // namespace

@@ -78,6 +78,7 @@ struct RandomFrames {
     p.s.reproject = true;
     p.s.depth_tolerance = 0.05f;
     p.s.normal_tolerance = 0.9f;
+    p.s.cap_indirect = 4.0f;  // indirect light keeps a history (keeps_indirect)
   }
 };
 
@@ -135,16 +136,21 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
   if (!BOUNCE_REPROJECT_EIGHT) GTEST_SKIP() << "built without AVX2";
   // The same size, a change of size (the viewer's resolution scaler), and a 2-pixel-wide last
   // frame; widths that leave a tail the per-pixel kernel takes.
-  for (const auto& [w, h, pw, ph] : {std::tuple{37, 9, 37, 9}, std::tuple{64, 7, 40, 5},
-                                     std::tuple{16, 4, 2, 2}, std::tuple{24, 3, 50, 8}}) {
+  // With indirect light's history kept, and without (a cap of 0: its planes are not read and
+  // both kernels leave zeros).
+  for (const auto& [w, h, pw, ph, cap] :
+       {std::tuple{37, 9, 37, 9, 4.0f}, std::tuple{64, 7, 40, 5, 4.0f},
+        std::tuple{16, 4, 2, 2, 4.0f}, std::tuple{24, 3, 50, 8, 4.0f},
+        std::tuple{37, 9, 37, 9, 0.0f}}) {
     RandomFrames f(w, h, pw, ph, uint64_t(w * 100 + pw));
+    f.p.s.cap_indirect = cap;
     ASSERT_TRUE(reproject_eight_fits(f.p));
     std::vector<float> planes(kReprojectedPlanes * size_t(w)), tap_planes(7 * size_t(w));
     std::vector<int> tap_q(static_cast<size_t>(w));
     ReprojectedRow row;
     for (int c = 0; c < kReprojectedPlanes; ++c) row.v[c] = planes.data() + size_t(c) * size_t(w);
     const TapRow taps = TapRow::over(tap_q.data(), tap_planes.data(), size_t(w));
-    int kept = 0, dropped = 0;
+    int kept = 0, dropped = 0, indirect_read = 0;
     for (int y = 0; y < h; ++y) {
       const size_t first = size_t(y) * size_t(w);
       for (int x = 0; x < w; ++x) taps.store(f.p, x, y, first + size_t(x));
@@ -163,6 +169,11 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
                       1e-5f * (1.0f + std::fabs(want.h.direct[c])));
           EXPECT_NEAR(got.h.indirect[c], want.h.indirect[c],
                       1e-5f * (1.0f + std::fabs(want.h.indirect[c])));
+          if (cap == 0.0f) {
+            EXPECT_EQ(got.h.indirect[c], 0.0f);
+          } else if (want.kept) {
+            indirect_read += want.h.indirect[c] != 0.0f;
+          }
         }
         EXPECT_NEAR(got.length, want.length, 1e-5f * (1.0f + want.length));
         for (int c = 0; c < 3; ++c) {
@@ -172,9 +183,12 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
         }
       }
     }
-    // The frames exercise both outcomes.
+    // The frames exercise both outcomes, and the kept history's indirect light where it is kept.
     EXPECT_GT(kept, 0);
     EXPECT_GT(dropped, 0);
+    if (cap > 0.0f) {
+      EXPECT_GT(indirect_read, 0);
+    }
   }
 }
 

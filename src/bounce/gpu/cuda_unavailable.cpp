@@ -39,8 +39,8 @@ DeviceDenoiserHost::DeviceDenoiserHost() {
 }
 DeviceDenoiserHost::~DeviceDenoiserHost() = default;
 
-void DeviceDenoiserHost::run(const DenoiseSettings&, const GBuffer&, HistoryState, bool, Image&,
-                             Image*, const LightChangeRegion&) {
+void DeviceDenoiserHost::run(const DenoiseSettings&, const GBuffer&, HistoryState, IndirectHistory,
+                             Image&, Image*, const LightChangeRegion&) {
   fail("device denoiser: {}", kNotBuilt);
 }
 

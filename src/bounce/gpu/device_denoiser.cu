@@ -239,7 +239,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   const DenoiseSettings& s = settings;
   const bool rest = denoise::denoise_at_rest(s, state);
   const denoise::TemporalSettings temporal_settings =
-      denoise::temporal_settings(s, state, frame.indirect_accumulated, resized, rest_valid_);
+      denoise::temporal_settings(s, state, frame.indirect_history, resized, rest_valid_);
   const float cap_indirect = temporal_settings.cap_indirect;
 
   row_short_.fill_zero();

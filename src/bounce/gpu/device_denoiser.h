@@ -16,7 +16,7 @@ namespace bounce {
 struct DeviceDenoiseFrame {
   ConstGBufferView g;  // device pointers, this frame's G-buffer with motion
   HistoryState state;
-  bool indirect_accumulated;
+  IndirectHistory indirect_history;
   LightChangeRegion direct_region = LightChangeRegion::all();  // as DenoiseFrame's
 };
 

@@ -15,7 +15,7 @@ DeviceDenoiserHost::DeviceDenoiserHost() : impl_(std::make_unique<Impl>()) {}
 DeviceDenoiserHost::~DeviceDenoiserHost() = default;
 
 void DeviceDenoiserHost::run(const DenoiseSettings& settings, const GBuffer& g, HistoryState state,
-                             bool indirect_accumulated, Image& direct, Image* indirect,
+                             IndirectHistory indirect_history, Image& direct, Image* indirect,
                              const LightChangeRegion& direct_region) {
   const size_t n = g.size();
   if (direct.pixel_count() != n || (indirect && indirect->pixel_count() != n))
@@ -36,7 +36,7 @@ void DeviceDenoiserHost::run(const DenoiseSettings& settings, const GBuffer& g, 
   d.g.motion.upload(g.motion);
   d.direct.upload(direct.data(), n);
   if (indirect) d.indirect.upload(indirect->data(), n);
-  const DeviceDenoiseFrame frame{d.g.view(), state, indirect_accumulated, direct_region};
+  const DeviceDenoiseFrame frame{d.g.view(), state, indirect_history, direct_region};
   d.denoiser.run(settings, frame, d.direct.data(), indirect ? d.indirect.data() : nullptr);
   d.direct.download(direct.data(), n);  // (a blocking copy: waits for the kernels)
   if (indirect) d.indirect.download(indirect->data(), n);

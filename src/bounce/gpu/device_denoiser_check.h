@@ -20,7 +20,7 @@ class DeviceDenoiserHost {
 
   // As Denoiser::run on these inputs: replaces direct (and indirect when not null) in place.
   void run(const DenoiseSettings& settings, const GBuffer& g, HistoryState state,
-           bool indirect_accumulated, Image& direct, Image* indirect,
+           IndirectHistory indirect_history, Image& direct, Image* indirect,
            const LightChangeRegion& direct_region = LightChangeRegion::all());
 
  private:

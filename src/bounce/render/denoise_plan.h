@@ -21,8 +21,7 @@ inline bool denoise_at_rest(const DenoiseSettings& s, HistoryState state) {
 // The temporal pass's settings for a frame: how history is reused after `state`, given whether
 // the image size changed and whether the rest averages are still valid.
 inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState state,
-                                          bool indirect_accumulated, bool resized,
-                                          bool rest_valid) {
+                                          IndirectHistory indirect, bool resized, bool rest_valid) {
   const bool rest = denoise_at_rest(s, state);
   TemporalSettings ts;
   ts.cap_direct = rest ? std::numeric_limits<float>::infinity() : float(std::max(s.history_max, 1));
@@ -31,9 +30,21 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
   // short one only while the camera moves (the technique then re-gathers kept photons from a new
   // view, at a lower resolution). At rest and after a world change (where the technique
   // restarts) a longer one would only lag behind the technique's own average.
+  // Indirect light from a technique's ring of frames keeps none while the world changes: the ring
+  // carries the change in (IndirectHistory::kRing).
   const float accumulated_cap =
       state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
-  ts.cap_indirect = indirect_accumulated ? std::min(ts.cap_direct, accumulated_cap) : ts.cap_direct;
+  switch (indirect) {
+    case IndirectHistory::kPerFrame:
+      ts.cap_indirect = ts.cap_direct;
+      break;
+    case IndirectHistory::kAccumulated:
+      ts.cap_indirect = std::min(ts.cap_direct, accumulated_cap);
+      break;
+    case IndirectHistory::kRing:
+      ts.cap_indirect = state == HistoryState::kWorldChanged ? 0.0f : ts.cap_direct;
+      break;
+  }
   ts.history = s.temporal && state != HistoryState::kReset;
   ts.reproject =
       resized || state == HistoryState::kCameraMoved || state == HistoryState::kWorldChanged;

@@ -145,11 +145,17 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
     planes[10 + 3 * m] = modulation[m].g;
     planes[11 + 3 * m] = modulation[m].b;
   }
+  const bool keeps_indirect = p.s.keeps_indirect();
   for (int c = 0; c < kTapped; ++c) {
+    float* out = row.v[c < 9 ? c : c + 1] + x;
+    if (!keeps_indirect && c >= 4 && c < 8) {  // (none kept: not read, zero as reproject_moved)
+      _mm256_storeu_ps(out, _mm256_setzero_ps());
+      continue;
+    }
     detail::load_taps(planes[c], q, width, t);
     __m256 s = _mm256_mul_ps(w[0], t[0]);
     for (int k = 1; k < 4; ++k) s = _mm256_fmadd_ps(w[k], t[k], s);
-    _mm256_storeu_ps(row.v[c < 9 ? c : c + 1] + x, _mm256_mul_ps(s, inv));
+    _mm256_storeu_ps(out, _mm256_mul_ps(s, inv));
   }
 }
 

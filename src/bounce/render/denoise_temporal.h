@@ -35,6 +35,9 @@ struct TemporalSettings {
 
   // Whether this frame's history is clipped (there is one, and the world changed).
   BOUNCE_HD bool clipped() const { return history && clip; }
+  // Whether indirect light keeps any history (a cap of 0: IndirectHistory::kRing while the world
+  // changes). Where it keeps none, its history is neither reprojected nor clipped.
+  BOUNCE_HD bool keeps_indirect() const { return cap_indirect > 0.0f; }
 };
 
 struct TemporalPass {
@@ -172,7 +175,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, 
   r.kept = (weight >= kMinHistoryWeight) & p.g.hit(i);
   const float inv = r.kept ? 1.0f / weight : 0.0f;
   r.h.direct *= inv;
-  r.h.indirect *= inv;
+  r.h.indirect *= p.s.keeps_indirect() ? inv : 0.0f;  // (none kept: zero, as the CPU's rows)
   r.length *= inv;
   r.factor *= inv;
   r.emission *= inv;
@@ -282,7 +285,8 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
     const ColorBoxes boxes = neighbourhood(p, x, y);
     r.clipped = p.direct_region.contains(p.g.position[i]);
     if (r.clipped) clip_history(boxes.direct, p.s.clip_gamma, r.h.direct);
-    if (p.indirect) clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
+    if (p.indirect && p.s.keeps_indirect())
+      clip_history(boxes.indirect, p.s.clip_gamma, r.h.indirect);
     if (p.exact) r.emission = shown_range(p, x, y).clamp_shown(r.emission, r.factor);
   }
   return r;
@@ -290,10 +294,12 @@ BOUNCE_HD inline Reprojected temporal_history(const TemporalPass& p, int x, int 
 
 // This frame's demodulated light as planes, for the CPU's clipped rows (their loops then
 // vectorise): direct rgb, indirect rgb, each pixel's weight in a neighbourhood (1 with a
-// surface, 0 without), and with kExact its shown_demodulated rgb.
+// surface, 0 without), and with kExact its shown_demodulated rgb. Without kDirect (no direct
+// light's history is clipped) the direct planes are not written; nor are the indirect ones
+// without kIndirect.
 inline constexpr int kDemodulatedPlanes = 10;
 inline constexpr int kDemodulatedLightPlanes = 7;  // those without exact light
-template <bool kIndirect, bool kExact>
+template <bool kDirect, bool kIndirect, bool kExact>
 BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_t i,
                                                     float* const* v) {
   vec3 d, ind;
@@ -302,9 +308,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE void store_demodulated(const TemporalPass& p, size_
   const bool hit = p.g.hit(i);
   d = pick(hit, d, vec3(0.0f));
   ind = pick(hit, ind, vec3(0.0f));
-  v[0][i] = d.x;
-  v[1][i] = d.y;
-  v[2][i] = d.z;
+  if constexpr (kDirect) {
+    v[0][i] = d.x;
+    v[1][i] = d.y;
+    v[2][i] = d.z;
+  }
   if constexpr (kIndirect) {
     v[3][i] = ind.x;
     v[4][i] = ind.y;
@@ -343,7 +351,8 @@ BOUNCE_HD BOUNCE_LANE_INLINE void for_neighbours(const size_t (&rows)[3],
 // neighbourhood() at pixel x of the row whose neighbour rows (y - 1, y, y + 1) start at `rows`,
 // from store_demodulated's planes: a row outside the image has `row_mask` 0 (and reads row y);
 // kChecked tests the columns (the row's ends). The same sums in the same order, branch-free.
-template <bool kIndirect, bool kChecked>
+// kDirect and kIndirect: which lights' boxes are summed (the other's box is left zero).
+template <bool kDirect, bool kIndirect, bool kChecked>
 BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const* v,
                                                              const size_t (&rows)[3],
                                                              const float (&row_mask)[3], int x,
@@ -353,9 +362,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE ColorBoxes neighbourhood_planes(const float* const*
   for_neighbours<kChecked>(rows, row_mask, x, width,
                            [&](size_t q, float mask) BOUNCE_LANE_LAMBDA_INLINE {
                              const float w = mask * v[6][q];
-                             const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
-                             d1 += d;
-                             d2 += d * d;
+                             if constexpr (kDirect) {
+                               const vec3 d = w * vec3(v[0][q], v[1][q], v[2][q]);
+                               d1 += d;
+                               d2 += d * d;
+                             }
                              if constexpr (kIndirect) {
                                const vec3 ind = w * vec3(v[3][q], v[4][q], v[5][q]);
                                i1 += ind;
@@ -457,7 +468,10 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   const float alpha_i = 1.0f / (glm::min(n, p.s.cap_indirect) + 1.0f);
   // This frame as a texel, blended in: colour, squared luminance.
   const float l_d = luminance_of(raw_d), l_i = luminance_of(raw_i);
-  const vec4 h_d = pick(kept, r.h.direct, vec4(0.0f)), h_i = pick(kept, r.h.indirect, vec4(0.0f));
+  // (A cap of 0 keeps no indirect history: this frame's light exactly, whatever the CPU's rows
+  // left in the history they did not reproject.)
+  const bool kept_i = kept & p.s.keeps_indirect();
+  const vec4 h_d = pick(kept, r.h.direct, vec4(0.0f)), h_i = pick(kept_i, r.h.indirect, vec4(0.0f));
   vec4 next_d = h_d + (vec4(raw_d, l_d * l_d) - h_d) * alpha;
   vec4 next_i = h_i + (vec4(raw_i, l_i * l_i) - h_i) * alpha_i;
   if constexpr (kRest) {

@@ -123,9 +123,25 @@ BOUNCE_LANE_INLINE void row_loop(int width, int border, const Checked& checked,
   for (int x = x1; x < width; ++x) checked(x);
 }
 
+// Where a clipped frame clips direct light's history (TemporalPass::direct_region): nowhere (a
+// flashlight shaded apart moved, and only indirect light and the exact light's range need this
+// frame's neighbourhoods), in the cones of the spots that changed, or everywhere.
+enum class DirectClip { kNowhere, kWhere, kEverywhere };
+
+DirectClip direct_clip(const LightChangeRegion& r) {
+  if (r.everywhere) return DirectClip::kEverywhere;
+  return r.cones > 0 ? DirectClip::kWhere : DirectClip::kNowhere;
+}
+
+// Whether a clipped frame clips indirect light's history: everywhere, unless the pass has no
+// indirect light or keeps none of its history (a cap of 0, IndirectHistory::kRing).
+bool clips_indirect(const denoise::TemporalPass& p) {
+  return p.indirect && p.s.keeps_indirect();
+}
+
 // This frame's demodulated light into `v`'s planes (denoise::store_demodulated), for
-// clip_row's neighbourhoods.
-template <bool kIndirect>
+// clip_row's neighbourhoods: direct light's with kDirect (it is clipped somewhere).
+template <bool kDirect, bool kIndirect>
 void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
   for_rows(pass.height, [&](int y) {
     const denoise::TemporalPass p = pass;
@@ -133,11 +149,11 @@ void demodulate_pass(const denoise::TemporalPass& pass, float* const* v) {
     if (p.exact) {
       BOUNCE_IVDEP
       for (size_t i = first; i < first + size_t(p.width); ++i)
-        denoise::store_demodulated<kIndirect, true>(p, i, v);
+        denoise::store_demodulated<kDirect, kIndirect, true>(p, i, v);
     } else {
       BOUNCE_IVDEP
       for (size_t i = first; i < first + size_t(p.width); ++i)
-        denoise::store_demodulated<kIndirect, false>(p, i, v);
+        denoise::store_demodulated<kDirect, kIndirect, false>(p, i, v);
     }
   });
 }
@@ -171,9 +187,10 @@ void direct_region_row(const LightChangeRegion& r, const vec3* position, int wid
 }
 
 // Clips the row's reprojected history to this frame's neighbourhoods (the world changed), from
-// demodulate_pass's planes: indirect light everywhere, direct light where `inside` is set, or
-// everywhere with kEverywhere. A history not kept is clipped too: it is not read.
-template <bool kIndirect, bool kEverywhere>
+// demodulate_pass's planes: indirect light everywhere, direct light where kDirect says (kWhere:
+// where `inside` is set). A history not kept is clipped too: it is not read. Where neither light
+// is clipped no neighbourhood is summed.
+template <bool kIndirect, DirectClip kDirect>
 void clip_row_where(const denoise::TemporalPass& p, const float* const* demodulated, int y,
                     const denoise::ReprojectedRow& row, const float* inside) {
   size_t rows[3];
@@ -188,17 +205,24 @@ void clip_row_where(const denoise::TemporalPass& p, const float* const* demodula
   for (int c = 0; c < 8; ++c) v[c] = row.v[c];
   float* clipped = row.v[16];
   const float gamma = p.s.clip_gamma;
-  auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
-    const denoise::ColorBoxes boxes =
-        denoise::neighbourhood_planes<kIndirect, kChecked>(demodulated, rows, row_mask, x, p.width);
-    const bool clip_direct = kEverywhere || inside[x] != 0.0f;
-    clip_entry(v, x, boxes.direct, gamma, clip_direct);
-    if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma, true);
-    clipped[x] = clip_direct ? 1.0f : 0.0f;
-  };
-  row_loop(
-      p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
-      [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+  constexpr bool kClipsDirect = kDirect != DirectClip::kNowhere;
+  if constexpr (kClipsDirect || kIndirect) {
+    auto clip = [&]<bool kChecked>(int x) BOUNCE_LANE_LAMBDA_INLINE {
+      const denoise::ColorBoxes boxes =
+          denoise::neighbourhood_planes<kClipsDirect, kIndirect, kChecked>(demodulated, rows,
+                                                                           row_mask, x, p.width);
+      const bool clip_direct =
+          kDirect == DirectClip::kEverywhere || (kClipsDirect && inside[x] != 0.0f);
+      if constexpr (kClipsDirect) clip_entry(v, x, boxes.direct, gamma, clip_direct);
+      if constexpr (kIndirect) clip_entry(v + 4, x, boxes.indirect, gamma, true);
+      clipped[x] = clip_direct ? 1.0f : 0.0f;
+    };
+    row_loop(
+        p.width, 1, [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<true>(x); },
+        [&](int x) BOUNCE_LANE_LAMBDA_INLINE { clip.template operator()<false>(x); });
+  } else {
+    std::fill_n(clipped, p.width, 0.0f);
+  }
   if (!p.exact) return;
   // The shown emission's history into its range (denoise::shown_range).
   float* e[3] = {row.v[13], row.v[14], row.v[15]};
@@ -220,15 +244,21 @@ void clip_row_where(const denoise::TemporalPass& p, const float* const* demodula
 template <bool kIndirect>
 void clip_row(const denoise::TemporalPass& p, const float* const* demodulated, int y,
               const denoise::ReprojectedRow& row) {
-  if (p.direct_region.everywhere) {
-    clip_row_where<kIndirect, true>(p, demodulated, y, row, nullptr);
-    return;
+  switch (direct_clip(p.direct_region)) {
+    case DirectClip::kEverywhere:
+      clip_row_where<kIndirect, DirectClip::kEverywhere>(p, demodulated, y, row, nullptr);
+      return;
+    case DirectClip::kNowhere:
+      clip_row_where<kIndirect, DirectClip::kNowhere>(p, demodulated, y, row, nullptr);
+      return;
+    case DirectClip::kWhere:
+      break;
   }
   thread_local std::vector<float> inside_row;
   inside_row.resize(size_t(p.width));
   direct_region_row(p.direct_region, p.g.position + size_t(y) * size_t(p.width), p.width,
                     inside_row.data());
-  clip_row_where<kIndirect, false>(p, demodulated, y, row, inside_row.data());
+  clip_row_where<kIndirect, DirectClip::kWhere>(p, demodulated, y, row, inside_row.data());
 }
 
 // Row y's reprojected history (denoise::reproject_moved at every pixel) into `row`: eight pixels
@@ -291,7 +321,8 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       for (int c = 0; c < kPlanes; ++c) row.v[c] = row_planes.data() + size_t(c) * size_t(p.width);
       reproject_row(p, y, row);
       if (p.s.clip)
-        clip_row<kIndirect>(p, demodulated, y, row);
+        clips_indirect(p) ? clip_row<true>(p, demodulated, y, row)
+                          : clip_row<false>(p, demodulated, y, row);
       else
         std::fill_n(row.v[16], p.width, 0.0f);
       const float* v[kPlanes];
@@ -816,7 +847,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   const DenoiseSettings& s = settings_;
   const bool rest = denoise::denoise_at_rest(s, state);
   const denoise::TemporalSettings temporal_settings =
-      denoise::temporal_settings(s, state, frame.indirect_accumulated, resized, b.rest_valid);
+      denoise::temporal_settings(s, state, frame.indirect_history, resized, b.rest_valid);
   const float cap_indirect = temporal_settings.cap_indirect;
   // Last run's "next" is this run's "previous". Where each pixel reads its own history (at rest)
   // the history and its length are updated in place instead: one stream through memory, not two.
@@ -858,15 +889,24 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
     temporal.prev_rest = {std::as_const(b.prev_rest).rgb(0), std::as_const(b.prev_rest).rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
-    if (temporal_settings.history && temporal_settings.clip) {
+    const bool clips_direct = direct_clip(frame.direct_region) != DirectClip::kNowhere;
+    if (temporal_settings.history && temporal_settings.clip &&
+        (clips_direct || clips_indirect(temporal) || temporal.exact)) {
       // (Sized on the first frame that needs them: a still or camera-only scene never does, and
       // the exact light's on the first frame with exact light.)
       const int planes =
           temporal.exact ? denoise::kDemodulatedPlanes : denoise::kDemodulatedLightPlanes;
       b.demodulated.fit(n, planes);
       for (int k = 0; k < planes; ++k) demodulated[k] = b.demodulated[k];
-      has_indirect ? demodulate_pass<true>(temporal, demodulated)
-                   : demodulate_pass<false>(temporal, demodulated);
+      auto demodulate = [&]<bool kDirect, bool kIndirect>() {
+        demodulate_pass<kDirect, kIndirect>(temporal, demodulated);
+      };
+      if (clips_indirect(temporal))
+        clips_direct ? demodulate.template operator()<true, true>()
+                     : demodulate.template operator()<false, true>();
+      else
+        clips_direct ? demodulate.template operator()<true, false>()
+                     : demodulate.template operator()<false, false>();
     }
     auto pass = [&]<bool kIndirect, bool kRest>() {
       temporal.exact ? temporal_pass<kIndirect, kRest, true>(temporal, demodulated, b.row_short)

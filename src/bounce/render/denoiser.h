@@ -25,6 +25,7 @@
 #include "bounce/core/image.h"
 #include "bounce/core/timer.h"
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/indirect_history.h"
 #include "bounce/render/light_change_region.h"
 #include "bounce/render/params.h"
 
@@ -122,8 +123,8 @@ int direct_iterations_at_rest(int iterations, int fade_frames, int rest_frames);
 struct DenoiseFrame {
   const GBuffer& gbuffer;  // this frame's, with motion filled
   HistoryState state;
-  bool indirect_accumulated;  // the technique accumulates its indirect light (capped history)
-  StageTimes& times;          // sub-stages "denoise/..."
+  IndirectHistory indirect_history;  // the technique's: how long a history its light keeps
+  StageTimes& times;                 // sub-stages "denoise/..."
   // Whether a later frame may continue this one's history. Without (every frame a reset:
   // FrameSettings::accumulate off) a reset does not start the rest averages no frame will read.
   bool history_continues = true;

@@ -244,7 +244,7 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
       parallel_for(
           f.indirect.pixel_count(), [&](size_t i) { f.indirect.pixels()[i] = vec3(0.0f); }, 16384);
     technique_->indirect(context, f.indirect);
-    if (average && technique_->indirect_history() == IndirectHistory::kPerFrame)
+    if (average && technique_->indirect_history() != IndirectHistory::kAccumulated)
       indirect_average_.add(f.indirect, settings.accumulate, rest);
   } else {
     f.indirect = Image();
@@ -254,13 +254,9 @@ const Frame& Renderer::render(const Camera& camera, const FrameSettings& setting
     ScopedStage stage(f.times, "denoise");
     denoiser_.keep_raw(settings.view == DenoiseView::kRaw);
     denoiser_.keep_motion(settings.view == DenoiseView::kMotion);
-    const DenoiseFrame frame{f.gbuffer,
-                             history,
-                             technique_->indirect_history() == IndirectHistory::kAccumulated,
-                             f.times,
-                             settings.accumulate,
-                             direct_region,
-                             apart.count > 0 ? &f.apart : nullptr};
+    const DenoiseFrame frame{
+        f.gbuffer,           history,       technique_->indirect_history(),      f.times,
+        settings.accumulate, direct_region, apart.count > 0 ? &f.apart : nullptr};
     denoiser_.run(frame, f.direct, indirect ? &f.indirect : nullptr);
   }
   {

@@ -19,6 +19,7 @@
 #include "bounce/core/image.h"
 #include "bounce/core/timer.h"
 #include "bounce/render/gbuffer.h"
+#include "bounce/render/indirect_history.h"
 #include "bounce/render/params.h"
 #include "bounce/scene/camera.h"
 #include "bounce/scene/scene.h"
@@ -64,12 +65,6 @@ struct FrameContext {
   TechniqueCounters& counters;
 
   bool continue_accumulation() const { return accumulate && !change.any(); }
-};
-
-// How a technique's indirect image relates to the frames before it.
-enum class IndirectHistory {
-  kPerFrame,     // a fresh estimate every frame: the Renderer averages it at rest
-  kAccumulated,  // already the technique's own running average at rest: not averaged again
 };
 
 // A command-line option a technique declares (e.g. tiled's --photons): `flag` without dashes;

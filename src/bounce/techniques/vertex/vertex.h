@@ -67,6 +67,8 @@ class VertexPhotonMapping final : public Technique {
   // Estimates at the keys of the refined triangles the pixels see, and interpolates them.
   void indirect(const FrameContext& context, Image& out) override;
   bool indirect_overwrites() const override { return true; }  // (the interpolation)
+  // A fresh estimate each frame from the ring of the last accumulation_frames photon frames.
+  IndirectHistory indirect_history() const override { return IndirectHistory::kRing; }
 
   VertexSettings& settings() { return settings_; }
   const VertexSettings& settings() const { return settings_; }
