@@ -178,12 +178,10 @@ void CudaPipeline::render(const DeviceFrameInput& in, Frame& f) {
   if (denoise) {
     // Debug views (FrameSettings::view) are the CPU's only: the GPU shows the denoised image.
     events_.begin("denoise");
-    denoiser_.run(in.denoiser.settings(),
-                  DeviceDenoiseFrame{g, in.history,
-                                     indirect ? IndirectHistory::kAccumulated  // tiled's
-                                              : IndirectHistory::kPerFrame,
-                                     in.direct_region},
-                  direct_.data(), indirect ? indirect_.data() : nullptr);
+    denoiser_.run(
+        in.denoiser.settings(),
+        DeviceDenoiseFrame{g, in.history, in.technique.indirect_history(), in.direct_region},
+        direct_.data(), indirect ? indirect_.data() : nullptr);
     events_.end();
   }
 

@@ -30,8 +30,6 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
   // short one only while the camera moves (the technique then re-gathers kept photons from a new
   // view, at a lower resolution). At rest and after a world change (where the technique
   // restarts) a longer one would only lag behind the technique's own average.
-  // Indirect light from a technique's ring of frames keeps none while the world changes: the ring
-  // carries the change in (IndirectHistory::kRing).
   const float accumulated_cap =
       state == HistoryState::kCameraMoved ? float(std::max(s.accumulated_history, 1)) : 1.0f;
   switch (indirect) {
@@ -41,7 +39,7 @@ inline TemporalSettings temporal_settings(const DenoiseSettings& s, HistoryState
     case IndirectHistory::kAccumulated:
       ts.cap_indirect = std::min(ts.cap_direct, accumulated_cap);
       break;
-    case IndirectHistory::kRing:
+    case IndirectHistory::kRing:  // none while the world changes: the ring carries the change in
       ts.cap_indirect = state == HistoryState::kWorldChanged ? 0.0f : ts.cap_direct;
       break;
   }
