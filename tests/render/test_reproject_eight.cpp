@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -23,10 +24,9 @@ struct RandomFrames {
   std::vector<float> depth;
   std::vector<vec3> normal;
   std::vector<uint32_t> mesh, primitive;
-  // Depth, nx, ny, nz, eight history planes, length, object, the modulation's factor rgb and
-  // emission rgb.
-  std::vector<float> prev_plane[20];
-  std::vector<uint32_t> prev_object;
+  // Depth and the eight history planes; the packed planes (normal, length, modulation).
+  std::vector<float> prev_plane[9];
+  std::vector<uint32_t> prev_object, prev_words[PackedPlanes::kCount];
   TemporalPass p;
 
   RandomFrames(int w_, int h_, int pw, int ph, uint64_t seed)
@@ -49,13 +49,20 @@ struct RandomFrames {
     }
     for (auto& plane : prev_plane) plane.resize(prev_n);
     prev_object.resize(prev_n);
+    PackedPlanes packed;
+    for (int k = 0; k < PackedPlanes::kCount; ++k) {
+      prev_words[k].resize(prev_n);
+      packed.w[k] = prev_words[k].data();
+    }
     for (size_t i = 0; i < prev_n; ++i) {
       prev_plane[0][i] = 2.0f + 0.2f * u();
-      const vec3 nn = glm::normalize(vec3(0.6f * u(), 1.0f, 0.6f * u()));
-      prev_plane[1][i] = nn.x;
-      prev_plane[2][i] = nn.y;
-      prev_plane[3][i] = nn.z;
-      for (int c = 4; c < 20; ++c) prev_plane[c][i] = 10.0f * u();
+      // (Signed components, which the halves' decoding must keep.)
+      const vec3 nn =
+          glm::normalize(vec3(0.6f * (2.0f * u() - 1.0f), 1.0f, 0.6f * (2.0f * u() - 1.0f)));
+      for (int c = 1; c < 9; ++c) prev_plane[c][i] = 10.0f * u();
+      const float length = 40.0f * u();
+      const vec3 factor(u(), u(), u()), emission(10.0f * u(), 10.0f * u(), 10.0f * u());
+      packed.set(i, nn, length, factor, emission);
       prev_object[i] = uint32_t(u() * 3.0f);
     }
     p.g.motion = motion.data();
@@ -63,13 +70,12 @@ struct RandomFrames {
     p.g.normal = normal.data();
     p.g.mesh = mesh.data();
     p.g.primitive = primitive.data();
+    // (The reprojection reads depth and objects of the surfaces, the normals from the packed
+    // planes.)
     p.prev_surface =
-        ConstSurfacePlanes{prev_plane[0].data(), prev_plane[1].data(), prev_plane[2].data(),
-                           prev_plane[3].data(), prev_object.data()};
-    for (int c = 0; c < 8; ++c) p.prev.c[c] = prev_plane[4 + c].data();
-    p.prev_length = prev_plane[12].data();
-    p.prev_rest = {{prev_plane[14].data(), prev_plane[15].data(), prev_plane[16].data()},
-                   {prev_plane[17].data(), prev_plane[18].data(), prev_plane[19].data()}};
+        ConstSurfacePlanes{prev_plane[0].data(), nullptr, nullptr, nullptr, prev_object.data()};
+    p.prev_packed = packed;
+    for (int c = 0; c < 8; ++c) p.prev.c[c] = prev_plane[1 + c].data();
     p.width = w;
     p.height = h;
     p.prev_width = pw;
@@ -189,6 +195,58 @@ TEST(Reprojection, EightPixelsAtOnceEqualThePerPixelKernel) {
     if (cap > 0.0f) {
       EXPECT_GT(indirect_read, 0);
     }
+  }
+}
+
+}  // namespace
+}  // namespace bounce::denoise
+
+namespace bounce::denoise {
+namespace {
+
+// The CPU's packing of a row after the blend (pack_row, F16C where the CPU has it) writes the
+// words PackedPlanes::set does, outliers included (huge, tiny, negative, infinite values), at
+// widths that leave a tail.
+TEST(Reprojection, ARowPacksAsEachPixelDoes) {
+  for (const int w : {8, 13, 37}) {
+    const int h = 2;
+    const size_t n = size_t(w) * size_t(h);
+    Pcg32 rng{uint64_t(w)};
+    std::vector<float> plane[10];
+    for (auto& v : plane) {
+      v.resize(n);
+      for (float& f : v) {
+        const float u = rng.next_float();
+        f = u < 0.1f    ? 1e6f
+            : u < 0.2f  ? 1e-6f
+            : u < 0.3f  ? -3.0f * rng.next_float()
+            : u < 0.35f ? std::numeric_limits<float>::infinity()
+                        : 70000.0f * rng.next_float() * rng.next_float() * rng.next_float();
+      }
+    }
+    std::vector<uint32_t> got[PackedPlanes::kCount], want[PackedPlanes::kCount];
+    TemporalPass p;
+    PackedPlanes want_planes;
+    for (int k = 0; k < PackedPlanes::kCount; ++k) {
+      got[k].assign(n, 0u);
+      want[k].assign(n, 0u);
+      p.packed.w[k] = got[k].data();
+      want_planes.w[k] = want[k].data();
+    }
+    p.surface.nx = plane[0].data();
+    p.surface.ny = plane[1].data();
+    p.surface.nz = plane[2].data();
+    p.length = plane[3].data();
+    p.rest.factor = {plane[4].data(), plane[5].data(), plane[6].data()};
+    p.rest.emission = {plane[7].data(), plane[8].data(), plane[9].data()};
+    p.width = w;
+    p.height = h;
+    for (int y = 0; y < h; ++y) pack_row(p, y);
+    for (size_t i = 0; i < n; ++i)
+      want_planes.set(i, vec3(plane[0][i], plane[1][i], plane[2][i]), plane[3][i],
+                      p.rest.factor.get(i), p.rest.emission.get(i));
+    for (int k = 0; k < PackedPlanes::kCount; ++k)
+      for (size_t i = 0; i < n; ++i) ASSERT_EQ(got[k][i], want[k][i]) << w << " " << k << " " << i;
   }
 }
 

@@ -123,6 +123,19 @@ denoise::SurfacePlanes DeviceDenoiser::Surface::view() {
   return {depth.data(), nx.data(), ny.data(), nz.data(), object.data()};
 }
 
+void DeviceDenoiser::Packed::resize(size_t n) {
+  for (auto& p : w) {
+    p.resize(n);
+    p.fill_zero();
+  }
+}
+
+denoise::PackedPlanes DeviceDenoiser::Packed::view() {
+  denoise::PackedPlanes p;
+  for (int k = 0; k < denoise::PackedPlanes::kCount; ++k) p.w[k] = w[k].data();
+  return p;
+}
+
 void DeviceDenoiser::Rgb::resize(size_t n) {
   for (auto* b : {&r, &g, &b}) {
     b->resize(n);
@@ -156,24 +169,20 @@ void DeviceDenoiser::resize(int w, int h, bool keep_last) {
   const size_t n = size_t(w) * size_t(h);
   if (!keep_last) {
     surface_.resize(n);
+    packed_.resize(n);
     history_.resize(n);
     history_.fill_zero();
     length_.resize(n);
     length_.fill_zero();
   }
   prev_surface_.resize(n);
+  prev_packed_.resize(n);
   prev_history_.resize(n);
   prev_history_.fill_zero();
   prev_length_.resize(n);
   prev_length_.fill_zero();
-  // (With keep_last, rest_* is last frame's modulation too: the next reprojection reads it.)
-  if (!keep_last) {
-    rest_factor_.resize(n);
-    rest_emission_.resize(n);
-  }
-  for (Rgb* p :
-       {&prev_rest_factor_, &prev_rest_emission_, &upsampled_[0], &upsampled_[1],
-        &filter_direct_[0], &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
+  for (Rgb* p : {&rest_factor_, &rest_emission_, &upsampled_[0], &upsampled_[1], &filter_direct_[0],
+                 &filter_direct_[1], &filter_indirect_[0], &filter_indirect_[1]})
     p->resize(n);
   for (auto* b : {&box_[0], &box_[1], &box_[2], &box_[3], &box_[4], &depth_slope_, &var_direct_,
                   &var_indirect_, &filter_var_direct_[0], &filter_var_direct_[1],
@@ -225,6 +234,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   valid_ = true;
   had_indirect_ = has_indirect;
   std::swap(surface_, prev_surface_);
+  std::swap(packed_, prev_packed_);
   std::swap(history_, prev_history_);
   std::swap(length_, prev_length_);
   // (The swapped-in planes keep the size of the run that last wrote them; this run writes n.)
@@ -233,6 +243,7 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
   surface_.ny.resize(n);
   surface_.nz.resize(n);
   surface_.object.resize(n);
+  for (auto& p : packed_.w) p.resize(n);
   history_.resize(n);
   length_.resize(n);
 
@@ -249,10 +260,12 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.direct = direct;
     temporal.indirect = indirect;
     temporal.prev_surface = ConstSurfacePlanes(prev_surface_.view());
+    temporal.prev_packed = denoise::ConstPackedPlanes(prev_packed_.view());
     temporal.prev = prev_history_.view();
     temporal.prev_length = prev_length_.data();
     temporal.next = history_.view();
     temporal.surface = surface_.view();
+    temporal.packed = packed_.view();
     temporal.var_direct = var_direct_.data();
     temporal.var_indirect = var_indirect_.data();
     temporal.length = length_.data();
@@ -263,15 +276,9 @@ void DeviceDenoiser::run(const DenoiseSettings& settings, const DeviceDenoiseFra
     temporal.s = temporal_settings;
     temporal.direct_region = frame.direct_region;
     const bool update_rest = rest || state == HistoryState::kReset;
-    // Reprojecting frames read last frame's modulation and write this frame's; at rest it is
-    // averaged in place (as Denoiser::run).
-    if (temporal_settings.reproject) {
-      std::swap(rest_factor_, prev_rest_factor_);
-      std::swap(rest_emission_, prev_rest_emission_);
-    }
+    // (Reprojecting frames write the modulation from last frame's packed planes; at rest it is
+    // averaged in place, as Denoiser::run.)
     temporal.rest = {rest_factor_.view(), rest_emission_.view()};
-    temporal.prev_rest = {ConstRgbPlanes(prev_rest_factor_.view()),
-                          ConstRgbPlanes(prev_rest_emission_.view())};
     uint32_t* row_short = row_short_.data();
     if (has_indirect)
       update_rest ? device_denoise::temporal<true, true>(temporal, row_short)

@@ -35,6 +35,11 @@ class DeviceDenoiser {
     void resize(size_t n);
     denoise::SurfacePlanes view();
   };
+  struct Packed {  // denoise::PackedPlanes
+    DeviceBuffer<uint32_t> w[denoise::PackedPlanes::kCount];
+    void resize(size_t n);
+    denoise::PackedPlanes view();
+  };
   struct Rgb {
     DeviceBuffer<float> r, g, b;
     void resize(size_t n);
@@ -53,11 +58,12 @@ class DeviceDenoiser {
   int rest_frames_ = 0;     // consecutive runs at rest (denoiser.cpp's Buffers::rest_frames)
   int history_frames_ = 0;  // frames since the last reset (Buffers::history_frames)
   Surface surface_, prev_surface_, half_surface_;
+  Packed packed_, prev_packed_;  // kept and swapped with the surfaces
   History history_, prev_history_;
   DeviceBuffer<float> length_, prev_length_;
-  // The modulation remodulation reads (at rest averaged in place; while reprojecting last
-  // frame's are prev_*: TemporalPass::prev_rest).
-  Rgb rest_factor_, rest_emission_, prev_rest_factor_, prev_rest_emission_;
+  // The modulation remodulation reads (at rest averaged in place; while reprojecting written from
+  // last frame's: TemporalPass::prev_packed).
+  Rgb rest_factor_, rest_emission_;
   DeviceBuffer<float> box_[5];
   DeviceBuffer<float> depth_slope_, var_direct_, var_indirect_;
   DeviceBuffer<uint32_t> row_short_;

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "bounce/core/device.h"
+#include "bounce/core/half_float.h"
 #include "bounce/core/lane.h"
 #include "bounce/core/math.h"
 #include "bounce/render/gbuffer_view.h"
@@ -132,6 +133,46 @@ struct RestPlanesT {
 };
 using RestPlanes = RestPlanesT<false>;
 using ConstRestPlanes = RestPlanesT<true>;
+
+// What the next frame's reprojection reads of a pixel besides its history, depth and object id,
+// as pairs of halves (core/half_float.h): the normal the surface tests compare and the history
+// length (nx | ny, nz | length), then the modulation (factor r | g, factor b | emission r,
+// emission g | b). The temporal pass writes them beside the full-precision planes that the other
+// passes read: the reprojection's gathers then touch five planes where they touched ten, and its
+// time goes with the cache lines it touches (docs/benchmarks.md, stop 56). Half precision is
+// 1/2048 of a value; the length (at most history_max in motion) clamps at 65504.
+template <bool kConst>
+struct PackedPlanesT {
+  static constexpr int kCount = 5;
+  Ptr<uint32_t, kConst> w[kCount] = {};
+
+  template <bool kTo>
+  requires(kTo && !kConst) BOUNCE_HD operator PackedPlanesT<kTo>() const {
+    PackedPlanesT<kTo> to;
+    for (int k = 0; k < kCount; ++k) to.w[k] = w[k];
+    return to;
+  }
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 normal(size_t i) const {
+    return {low_half(w[0][i]), high_half(w[0][i]), low_half(w[1][i])};
+  }
+  BOUNCE_HD BOUNCE_LANE_INLINE float length(size_t i) const { return high_half(w[1][i]); }
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 factor(size_t i) const {
+    return {low_half(w[2][i]), high_half(w[2][i]), low_half(w[3][i])};
+  }
+  BOUNCE_HD BOUNCE_LANE_INLINE vec3 emission(size_t i) const {
+    return {high_half(w[3][i]), low_half(w[4][i]), high_half(w[4][i])};
+  }
+  BOUNCE_HD BOUNCE_LANE_INLINE void set(size_t i, vec3 normal, float length, vec3 factor,
+                                        vec3 emission) const {
+    w[0][i] = pack_halves(normal.x, normal.y);
+    w[1][i] = pack_halves(normal.z, length);
+    w[2][i] = pack_halves(factor.x, factor.y);
+    w[3][i] = pack_halves(factor.z, emission.x);
+    w[4][i] = pack_halves(emission.y, emission.z);
+  }
+};
+using PackedPlanes = PackedPlanesT<false>;
+using ConstPackedPlanes = PackedPlanesT<true>;
 
 BOUNCE_HD inline float luminance_of(float r, float g, float b) {
   return 0.2126f * r + 0.7152f * g + 0.0722f * b;

@@ -13,7 +13,7 @@
 
 #include "bounce/render/denoise_temporal.h"
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if defined(__AVX2__) && defined(__FMA__) && defined(__F16C__)
 #include <immintrin.h>
 #define BOUNCE_REPROJECT_EIGHT 1
 #else
@@ -90,6 +90,23 @@ inline __attribute__((always_inline)) void load_taps(const float* a, const int* 
   load_pairs(a, q, width, t[2], t[3]);
 }
 
+// The floats of eight words of two halves each (core/half_float.h): the low halves into `lo`,
+// the high into `hi`, with F16C's conversion (exact for the normal halves and zeros stored).
+inline __attribute__((always_inline)) void halves(__m256 words, __m256& lo, __m256& hi) {
+  // Within each 128-bit lane: the four low halves, then the four high ones.
+  const __m256i order = _mm256_setr_epi8(0, 1, 4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15, 0, 1,
+                                         4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15);
+  const __m256i s = _mm256_shuffle_epi8(_mm256_castps_si256(words), order);
+  const __m256i p = _mm256_permute4x64_epi64(s, _MM_SHUFFLE(3, 1, 2, 0));
+  lo = _mm256_cvtph_ps(_mm256_castsi256_si128(p));
+  hi = _mm256_cvtph_ps(_mm256_extracti128_si256(p, 1));
+}
+
+inline __attribute__((always_inline)) void tap_halves(const __m256 (&words)[4], __m256 (&lo)[4],
+                                                      __m256 (&hi)[4]) {
+  for (int k = 0; k < 4; ++k) halves(words[k], lo[k], hi[k]);
+}
+
 }  // namespace detail
 
 // reproject_moved for the eight pixels x .. x + 7 of row y (inside this frame), from `taps`
@@ -112,13 +129,19 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
     const __m256 dz = _mm256_and_ps(_mm256_sub_ps(t[k], z), abs_mask);
     same[k] = _mm256_and_ps(same[k], _mm256_cmp_ps(dz, dz_max, _CMP_LE_OQ));
   }
-  const float* normal[3] = {p.prev_surface.nx, p.prev_surface.ny, p.prev_surface.nz};
-  for (int c = 0; c < 3; ++c) {
-    const __m256 n = _mm256_loadu_ps(taps.normal[c] + x);
-    detail::load_taps(normal[c], q, width, t);
-    for (int k = 0; k < 4; ++k)
-      dot[k] = c == 0 ? _mm256_mul_ps(t[k], n) : _mm256_fmadd_ps(t[k], n, dot[k]);
-  }
+  // Last frame's normals from its packed planes (nx | ny, nz | length): the length's taps are
+  // kept for the sums below.
+  const auto packed = [&](int k) { return reinterpret_cast<const float*>(p.prev_packed.w[k]); };
+  __m256 words[4], lo[4], hi[4], length[4];
+  detail::load_taps(packed(0), q, width, words);
+  detail::tap_halves(words, lo, hi);
+  for (int k = 0; k < 4; ++k) dot[k] = _mm256_mul_ps(lo[k], _mm256_loadu_ps(taps.normal[0] + x));
+  for (int k = 0; k < 4; ++k)
+    dot[k] = _mm256_fmadd_ps(hi[k], _mm256_loadu_ps(taps.normal[1] + x), dot[k]);
+  detail::load_taps(packed(1), q, width, words);
+  detail::tap_halves(words, lo, length);
+  for (int k = 0; k < 4; ++k)
+    dot[k] = _mm256_fmadd_ps(lo[k], _mm256_loadu_ps(taps.normal[2] + x), dot[k]);
   const __m256 tolerance = _mm256_set1_ps(p.s.normal_tolerance);
   __m256 w[4];
   for (int k = 0; k < 4; ++k) {
@@ -133,32 +156,84 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
       no_hit, _mm256_cmp_ps(weight, _mm256_set1_ps(kMinHistoryWeight), _CMP_GE_OQ));
   const __m256 inv = _mm256_and_ps(_mm256_div_ps(_mm256_set1_ps(1.0f), weight), kept);
   _mm256_storeu_ps(row.v[9] + x, _mm256_and_ps(kept, _mm256_set1_ps(1.0f)));
-  // The history's eight planes, the history length, then the modulation's six planes:
-  // ReprojectedRow's order (past its plane 9, kept; its last, clipped, is the clip's).
-  constexpr int kTapped = 15;
-  const float* planes[kTapped];
-  for (int c = 0; c < 8; ++c) planes[c] = p.prev.c[c];
-  planes[8] = p.prev_length;
-  const RgbPlanesT<true> modulation[2] = {p.prev_rest.factor, p.prev_rest.emission};
-  for (int m = 0; m < 2; ++m) {
-    planes[9 + 3 * m] = modulation[m].r;
-    planes[10 + 3 * m] = modulation[m].g;
-    planes[11 + 3 * m] = modulation[m].b;
-  }
+  // The taps' weighted sum, normalised, into ReprojectedRow's plane c.
+  const auto store = [&](int c, const __m256(&taps4)[4]) __attribute__((always_inline)) {
+    __m256 s = _mm256_mul_ps(w[0], taps4[0]);
+    for (int k = 1; k < 4; ++k) s = _mm256_fmadd_ps(w[k], taps4[k], s);
+    _mm256_storeu_ps(row.v[c] + x, _mm256_mul_ps(s, inv));
+  };
+  // The history's eight planes (ReprojectedRow's first eight).
   const bool keeps_indirect = p.s.keeps_indirect();
-  for (int c = 0; c < kTapped; ++c) {
-    float* out = row.v[c < 9 ? c : c + 1] + x;
-    if (!keeps_indirect && c >= 4 && c < 8) {  // (none kept: not read, zero as reproject_moved)
-      _mm256_storeu_ps(out, _mm256_setzero_ps());
+  for (int c = 0; c < 8; ++c) {
+    if (!keeps_indirect && c >= 4) {  // (none kept: not read, zero as reproject_moved)
+      _mm256_storeu_ps(row.v[c] + x, _mm256_setzero_ps());
       continue;
     }
-    detail::load_taps(planes[c], q, width, t);
-    __m256 s = _mm256_mul_ps(w[0], t[0]);
-    for (int k = 1; k < 4; ++k) s = _mm256_fmadd_ps(w[k], t[k], s);
-    _mm256_storeu_ps(out, _mm256_mul_ps(s, inv));
+    detail::load_taps(p.prev.c[c], q, width, t);
+    store(c, t);
+  }
+  // The history length (plane 8; plane 9, kept, is above), then the modulation's factor rgb and
+  // emission rgb (planes 10-15; the last, clipped, is the clip's), from the packed planes.
+  store(8, length);
+  for (int k = 2; k < 5; ++k) {
+    detail::load_taps(packed(k), q, width, words);
+    detail::tap_halves(words, lo, hi);
+    store(2 * k + 6, lo);
+    store(2 * k + 7, hi);
   }
 }
 
 #endif
+
+#if BOUNCE_REPROJECT_EIGHT
+namespace detail {
+// The half bits of eight floats, as half_bits makes them: magnitudes clamped to the largest half
+// (NaN and infinities too), those below the smallest normal half flushed to a signed zero, then
+// F16C's conversion, rounding to nearest even.
+inline __attribute__((always_inline)) __m128i half_bits8(__m256 v) {
+  const __m256i u = _mm256_castps_si256(v);
+  const __m256i sign = _mm256_and_si256(u, _mm256_set1_epi32(int(0x80000000u)));
+  __m256i a = _mm256_and_si256(u, _mm256_set1_epi32(0x7FFFFFFF));
+  a = _mm256_min_epu32(a, _mm256_set1_epi32(int(kHalfMaxBits)));
+  a = _mm256_and_si256(a, _mm256_cmpgt_epi32(a, _mm256_set1_epi32(int(kHalfMinNormalBits - 1))));
+  return _mm256_cvtps_ph(_mm256_castsi256_ps(_mm256_or_si256(sign, a)), _MM_FROUND_TO_NEAREST_INT);
+}
+// Words of the halves of a (low) and b (high), eight of each, into out[0..7].
+inline __attribute__((always_inline)) void store_pairs(__m256 a, __m256 b, uint32_t* out) {
+  const __m128i ha = half_bits8(a), hb = half_bits8(b);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_unpacklo_epi16(ha, hb));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4), _mm_unpackhi_epi16(ha, hb));
+}
+}  // namespace detail
+#endif
+
+// Row y's packed planes (PackedPlanes) from what the blend wrote there (temporal_blend with kPack
+// false): eight pixels at a time with F16C where the CPU has it, the same words as
+// PackedPlanes::set.
+inline void pack_row(const TemporalPass& p, int y) {
+  const size_t first = size_t(y) * size_t(p.width);
+  const PackedPlanes out = p.packed;
+  const float* nx = p.surface.nx + first;
+  const float* ny = p.surface.ny + first;
+  const float* nz = p.surface.nz + first;
+  const float* length = p.length + first;
+  const RgbPlanes f = p.rest.factor, e = p.rest.emission;
+  int x = 0;
+#if BOUNCE_REPROJECT_EIGHT
+  const auto at = [&](const float* plane) { return _mm256_loadu_ps(plane + x); };
+  for (; x + 8 <= p.width; x += 8) {
+    const size_t i = first + size_t(x);
+    detail::store_pairs(at(nx), at(ny), out.w[0] + i);
+    detail::store_pairs(at(nz), at(length), out.w[1] + i);
+    detail::store_pairs(_mm256_loadu_ps(f.r + i), _mm256_loadu_ps(f.g + i), out.w[2] + i);
+    detail::store_pairs(_mm256_loadu_ps(f.b + i), _mm256_loadu_ps(e.r + i), out.w[3] + i);
+    detail::store_pairs(_mm256_loadu_ps(e.g + i), _mm256_loadu_ps(e.b + i), out.w[4] + i);
+  }
+#endif
+  for (; x < p.width; ++x) {
+    const size_t i = first + size_t(x);
+    out.set(i, vec3(nx[x], ny[x], nz[x]), length[x], f.get(i), e.get(i));
+  }
+}
 
 }  // namespace bounce::denoise

@@ -48,20 +48,24 @@ struct TemporalPass {
   // renderer shades apart (DirectSettings::apart), exact in each frame. Averaged with the
   // emission in motion, its history clamped to this frame's neighbourhood (shown_range).
   const vec3* exact = nullptr;
+  // Last frame's surfaces: the reprojection reads their depth and object ids, and the rest of what
+  // it tests and carries from prev_packed.
   ConstSurfacePlanes prev_surface;
+  ConstPackedPlanes prev_packed;
   ConstHistoryPlanes prev;
   const float* prev_length = nullptr;
-  // Out: the next history (its light is the filter's input), this frame's surfaces, the
-  // luminance variance of the light's mean from the moments over the frames, the history length.
+  // Out: the next history (its light is the filter's input), this frame's surfaces and what the
+  // next frame reprojects of them and of the modulation (PackedPlanes), the luminance variance of
+  // the light's mean from the moments over the frames, the history length.
   HistoryPlanes next;
   SurfacePlanes surface;
+  PackedPlanes packed;
   float* var_direct = nullptr;
   float* var_indirect = nullptr;
   float* length = nullptr;
   // The modulation remodulation reads (RestPlanes): updated in place at rest and after a reset;
-  // in motion this frame's, blended with prev_rest, last frame's, reprojected with the history.
+  // in motion this frame's, blended with last frame's (prev_packed), reprojected with the history.
   RestPlanes rest;
-  ConstRestPlanes prev_rest;  // prev_width x prev_height; read only where reprojecting
   int width = 0;
   int height = 0;
   // The size of the previous frame's planes (prev_*): the viewer's resolution scaler changes
@@ -93,7 +97,7 @@ struct Reprojected {
   float length = 0.0f;
   bool kept = false;
   bool clipped = false;  // direct light's history clipped to this frame's neighbourhood
-  // In motion, last frame's modulation (TemporalPass::prev_rest) through the same taps.
+  // In motion, last frame's modulation (TemporalPass::prev_packed) through the same taps.
   vec3 factor{0.0f}, emission{0.0f};
 };
 // The bilinear footprint of this frame's pixel (x, y) in the last frame: a 2 x 2 block of its
@@ -148,7 +152,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool same_surface(const TemporalPass& p, size_t i, 
   const bool same_object = p.prev_surface.object[q] == p.g.mesh[i];
   const bool near_depth = std::fabs(p.prev_surface.depth[q] - z) <= p.s.depth_tolerance * z;
   const bool near_normal =
-      glm::dot(p.prev_surface.normal(size_t(q)), p.g.normal[i]) >= p.s.normal_tolerance;
+      glm::dot(p.prev_packed.normal(size_t(q)), p.g.normal[i]) >= p.s.normal_tolerance;
   return same_object & near_depth & near_normal;
 }
 
@@ -168,9 +172,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected reproject_moved(const TemporalPass& p, 
     const float w = same_surface(p, i, q) ? taps.w[k] : 0.0f;
     weight += w;
     r.h.add(w, p.prev.get(size_t(q)));
-    r.length += w * p.prev_length[q];
-    r.factor += w * p.prev_rest.factor.get(size_t(q));
-    r.emission += w * p.prev_rest.emission.get(size_t(q));
+    r.length += w * p.prev_packed.length(size_t(q));
+    r.factor += w * p.prev_packed.factor(size_t(q));
+    r.emission += w * p.prev_packed.emission(size_t(q));
   });
   r.kept = (weight >= kMinHistoryWeight) & p.g.hit(i);
   const float inv = r.kept ? 1.0f / weight : 0.0f;
@@ -436,7 +440,9 @@ BOUNCE_HD BOUNCE_LANE_INLINE Reprojected load_reprojected(const float* const* v,
 // Returns whether the pixel's history is too short for its own variance (the spatial estimate then
 // stands in). kExact: the pass has exact light (p.exact); a switch, not a test of the pointer in
 // the loop, which GCC then vectorises less well.
-template <bool kIndirect, bool kRest, bool kExact = false>
+// kPack: whether it writes p.packed too (the CPU's rows pack theirs after the blend, with F16C:
+// pack_row).
+template <bool kIndirect, bool kRest, bool kExact = false, bool kPack = true>
 BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i,
                                                  const Reprojected& r) {
   const bool hit = p.g.hit(i);
@@ -447,10 +453,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   // normal gives it no weight as an a-trous tap, so its zeros do not darken the surface it sits
   // on (the ceiling around the Cornell box's light).
   const bool filtered = hit & reflects_light(p.g.albedo[i], p.g.f0[i]);
+  const vec3 surface_normal = pick(filtered, normal, vec3(0.0f));
   p.surface.depth[i] = pick(hit, depth, 0.0f);
-  p.surface.nx[i] = pick(filtered, normal.x, 0.0f);
-  p.surface.ny[i] = pick(filtered, normal.y, 0.0f);
-  p.surface.nz[i] = pick(filtered, normal.z, 0.0f);
+  p.surface.nx[i] = surface_normal.x;
+  p.surface.ny[i] = surface_normal.y;
+  p.surface.nz[i] = surface_normal.z;
   p.surface.object[i] = pick(hit, mesh, kNoPrimitive);
 
   const vec3 factor = demodulation_factor(p.g.albedo[i]), emission = p.g.emission[i];
@@ -474,14 +481,15 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   const vec4 h_d = pick(kept, r.h.direct, vec4(0.0f)), h_i = pick(kept_i, r.h.indirect, vec4(0.0f));
   vec4 next_d = h_d + (vec4(raw_d, l_d * l_d) - h_d) * alpha;
   vec4 next_i = h_i + (vec4(raw_i, l_i * l_i) - h_i) * alpha_i;
+  vec3 next_factor, next_emission;  // the modulation remodulation reads
   if constexpr (kRest) {
     // The rest average continues where this pixel's history does, else it starts here.
     const bool continues = kept & p.s.rest_continues;
     const vec3 f0 = pick(continues, p.rest.factor.get(i), factor);
     const vec3 e0 = p.rest.emission.get(i);
     const vec3 f1 = f0 + (factor - f0) * alpha;
-    p.rest.factor.set(i, f1);
-    p.rest.emission.set(i, pick(continues, e0 + (shown - e0) * alpha, shown));
+    next_factor = f1;
+    next_emission = pick(continues, e0 + (shown - e0) * alpha, shown);
     // At rest jittered frames see other surfaces at an edge: the light that goes back out is
     // the average of the modulated light (the history times the average factor, plus this
     // frame), divided by the new average factor, so that remodulating by it returns exactly the
@@ -497,9 +505,11 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
     // a short average of them comes closer to the pixel's average (docs/benchmarks.md, stop 51).
     // Where the history is not kept (a disocclusion, or none) the pixel takes this frame's.
     const float a = kept ? p.s.modulation_alpha : 1.0f;
-    p.rest.factor.set(i, r.factor + (factor - r.factor) * a);
-    p.rest.emission.set(i, r.emission + (shown - r.emission) * a);
+    next_factor = r.factor + (factor - r.factor) * a;
+    next_emission = r.emission + (shown - r.emission) * a;
   }
+  p.rest.factor.set(i, next_factor);
+  p.rest.emission.set(i, next_emission);
   // (Without a surface and history, next is this frame's light: what a later frame at rest
   // averages with. In motion the filter's result there is not used: remodulation keeps what the
   // technique wrote, so the history's light serves as the filter's input everywhere.)
@@ -509,6 +519,7 @@ BOUNCE_HD BOUNCE_LANE_INLINE bool temporal_blend(const TemporalPass& p, size_t i
   p.var_direct[i] = pick(hit, glm::max(next_d.w - m1_d * m1_d, 0.0f) * alpha, 0.0f);
   p.var_indirect[i] = pick(hit, glm::max(next_i.w - m1_i * m1_i, 0.0f) * alpha_i, 0.0f);
   p.length[i] = n;
+  if constexpr (kPack) p.packed.set(i, surface_normal, n, next_factor, next_emission);
   return hit & (n + 1.0f < kShortHistory);
 }
 

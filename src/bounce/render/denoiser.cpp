@@ -44,9 +44,9 @@ inline size_t next_plane_offset() {
   static std::atomic<size_t> count{0};
   return kPlanePadding + (count++ % (4096 / (kPlaneStagger * sizeof(float)))) * kPlaneStagger;
 }
-template <int kCount>
+template <int kCount, typename T = float>
 struct Planes {
-  std::array<std::vector<float>, kCount> planes;
+  std::array<std::vector<T>, kCount> planes;
   std::array<size_t, kCount> offset{};  // where each plane's first pixel is
   size_t pixels = 0;
   void resize(size_t n) {
@@ -65,10 +65,10 @@ struct Planes {
   }
   void size_plane(int k) {
     offset[size_t(k)] = next_plane_offset();
-    planes[size_t(k)].assign(pixels + offset[size_t(k)] + kPlanePadding, 0.0f);
+    planes[size_t(k)].assign(pixels + offset[size_t(k)] + kPlanePadding, T(0));
   }
-  float* operator[](int k) { return planes[size_t(k)].data() + offset[size_t(k)]; }
-  const float* operator[](int k) const { return planes[size_t(k)].data() + offset[size_t(k)]; }
+  T* operator[](int k) { return planes[size_t(k)].data() + offset[size_t(k)]; }
+  const T* operator[](int k) const { return planes[size_t(k)].data() + offset[size_t(k)]; }
   RgbPlanes rgb(int first) { return {(*this)[first], (*this)[first + 1], (*this)[first + 2]}; }
   ConstRgbPlanes rgb(int first) const {
     return {(*this)[first], (*this)[first + 1], (*this)[first + 2]};
@@ -94,6 +94,22 @@ struct SurfaceBuffers {
   }
   ConstSurfacePlanes view() const {
     return {geometry[0], geometry[1], geometry[2], geometry[3], object.data()};
+  }
+};
+
+// What the next frame reprojects of a frame (denoise::PackedPlanes).
+struct PackedBuffers {
+  Planes<denoise::PackedPlanes::kCount, uint32_t> words;
+  void resize(size_t n) { words.resize(n); }
+  denoise::PackedPlanes view() {
+    denoise::PackedPlanes p;
+    for (int k = 0; k < denoise::PackedPlanes::kCount; ++k) p.w[k] = words[k];
+    return p;
+  }
+  denoise::ConstPackedPlanes view() const {
+    denoise::ConstPackedPlanes p;
+    for (int k = 0; k < denoise::PackedPlanes::kCount; ++k) p.w[k] = words[k];
+    return p;
   }
 };
 
@@ -300,8 +316,8 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       const denoise::Reprojected none;
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x)
-        any_short |=
-            uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(p, first + size_t(x), none));
+        any_short |= uint32_t(
+            denoise::temporal_blend<kIndirect, kRest, kExact, false>(p, first + size_t(x), none));
     } else if (!p.s.reproject) {
       // At rest every pixel keeps its own history (denoise::reproject): read it in place.
       BOUNCE_IVDEP
@@ -311,7 +327,7 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
         same.h = p.prev.get(i);
         same.length = p.prev_length[i];
         same.kept = true;
-        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(p, i, same));
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact, false>(p, i, same));
       }
     } else {
       constexpr int kPlanes = denoise::kReprojectedPlanes;
@@ -329,10 +345,11 @@ void temporal_pass(const denoise::TemporalPass& pass, const float* const* demodu
       for (int c = 0; c < kPlanes; ++c) v[c] = row.v[c];
       BOUNCE_IVDEP
       for (int x = 0; x < p.width; ++x)
-        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact>(
+        any_short |= uint32_t(denoise::temporal_blend<kIndirect, kRest, kExact, false>(
             p, first + size_t(x), denoise::load_reprojected(v, x)));
     }
     row_short[size_t(y)] = any_short != 0;
+    denoise::pack_row(p, y);
   });
 }
 
@@ -664,11 +681,12 @@ struct Denoiser::Buffers {
   bool rest_valid = false;    // the last run left rest averages (it was at rest or a reset)
   int rest_frames = 0;        // consecutive runs at rest up to the last one
   SurfaceBuffers surface, prev_surface;
-  Planes<8> history, prev_history;  // denoise::HistoryPlanes
-  std::vector<float> prev_length;   // last run's history_length_
-  // RestPlanes: factor rgb, emission rgb; at rest updated in place, while reprojecting last
-  // frame's are prev_rest (TemporalPass::prev_rest).
-  Planes<6> rest, prev_rest;
+  PackedBuffers packed, prev_packed;  // kept and swapped with the surfaces
+  Planes<8> history, prev_history;    // denoise::HistoryPlanes
+  std::vector<float> prev_length;     // last run's history_length_
+  // RestPlanes: factor rgb, emission rgb; at rest updated in place, while reprojecting written
+  // from last frame's (TemporalPass::prev_packed).
+  Planes<6> rest;
   // This frame's demodulated light where the history is clipped (denoise::store_demodulated).
   Planes<denoise::kDemodulatedPlanes> demodulated;
   Planes<5> box;  // its moments summed along rows, for the spatial variance
@@ -701,14 +719,14 @@ struct Denoiser::Buffers {
     const size_t n = size_t(w) * size_t(h);
     if (!keep_last) {
       surface.resize(n);
+      packed.resize(n);
       history.resize(n);
     }
     prev_surface.resize(n);
+    prev_packed.resize(n);
     prev_history.resize(n);
     prev_length.assign(n, 0.0f);
-    // (With keep_last, `rest` is last frame's modulation too: the next reprojection's prev_rest.)
-    if (!keep_last) rest.resize(n);
-    prev_rest.resize(n);
+    rest.resize(n);
     box.resize(n);
     depth_slope.assign(n, 0.0f);
     row_short.assign(size_t(h), 0);
@@ -852,6 +870,7 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Last run's "next" is this run's "previous". Where each pixel reads its own history (at rest)
   // the history and its length are updated in place instead: one stream through memory, not two.
   std::swap(b.surface, b.prev_surface);
+  std::swap(b.packed, b.prev_packed);
   const bool in_place = temporal_settings.history && !temporal_settings.reproject;
   if (!in_place) {
     std::swap(b.history, b.prev_history);
@@ -862,9 +881,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
   // Rest averages start at a reset (the first frame of a still; unless no frame will continue
   // its history) and continue at rest.
   const bool update_rest = rest || (state == HistoryState::kReset && frame.history_continues);
-  // Reprojecting frames read last frame's modulation (prev_rest) and write this frame's; at rest
-  // it is averaged in place.
-  if (temporal_settings.reproject) std::swap(b.rest, b.prev_rest);
   {
     ScopedStage stage(frame.times, "denoise/temporal");
     denoise::TemporalPass temporal;
@@ -873,10 +889,12 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.indirect = indirect ? indirect->data() : nullptr;
     temporal.exact = frame.exact ? frame.exact->pixels().data() : nullptr;
     temporal.prev_surface = std::as_const(b.prev_surface).view();
+    temporal.prev_packed = std::as_const(b.prev_packed).view();
     temporal.prev = history_planes(prev_history);
     temporal.prev_length = prev_length.data();
     temporal.next = history_planes(b.history);
     temporal.surface = b.surface.view();
+    temporal.packed = b.packed.view();
     temporal.var_direct = b.variance[0];
     temporal.var_indirect = b.variance[1];
     temporal.length = history_length_.data();
@@ -887,7 +905,6 @@ void Denoiser::run(const DenoiseFrame& frame, Image& direct, Image* indirect) {
     temporal.s = temporal_settings;
     temporal.direct_region = frame.direct_region;
     temporal.rest = {b.rest.rgb(0), b.rest.rgb(3)};
-    temporal.prev_rest = {std::as_const(b.prev_rest).rgb(0), std::as_const(b.prev_rest).rgb(3)};
     float* demodulated[denoise::kDemodulatedPlanes] = {};
     const bool clips_direct = direct_clip(frame.direct_region) != DirectClip::kNowhere;
     if (temporal_settings.history && temporal_settings.clip &&
