@@ -183,9 +183,6 @@ inline void reproject_eight(const TemporalPass& p, const TapRow& taps, int x, in
   }
 }
 
-#endif
-
-#if BOUNCE_REPROJECT_EIGHT
 namespace detail {
 // The half bits of eight floats, as half_bits makes them: magnitudes clamped to the largest half
 // (NaN and infinities too), those below the smallest normal half flushed to a signed zero, then
@@ -213,27 +210,21 @@ inline __attribute__((always_inline)) void store_pairs(__m256 a, __m256 b, uint3
 inline void pack_row(const TemporalPass& p, int y) {
   const size_t first = size_t(y) * size_t(p.width);
   const PackedPlanes out = p.packed;
-  const float* nx = p.surface.nx + first;
-  const float* ny = p.surface.ny + first;
-  const float* nz = p.surface.nz + first;
-  const float* length = p.length + first;
+  const SurfacePlanes s = p.surface;
   const RgbPlanes f = p.rest.factor, e = p.rest.emission;
-  int x = 0;
+  size_t i = first;
+  const size_t end = first + size_t(p.width);
 #if BOUNCE_REPROJECT_EIGHT
-  const auto at = [&](const float* plane) { return _mm256_loadu_ps(plane + x); };
-  for (; x + 8 <= p.width; x += 8) {
-    const size_t i = first + size_t(x);
-    detail::store_pairs(at(nx), at(ny), out.w[0] + i);
-    detail::store_pairs(at(nz), at(length), out.w[1] + i);
-    detail::store_pairs(_mm256_loadu_ps(f.r + i), _mm256_loadu_ps(f.g + i), out.w[2] + i);
-    detail::store_pairs(_mm256_loadu_ps(f.b + i), _mm256_loadu_ps(e.r + i), out.w[3] + i);
-    detail::store_pairs(_mm256_loadu_ps(e.g + i), _mm256_loadu_ps(e.b + i), out.w[4] + i);
+  const auto at = [&](const float* plane) { return _mm256_loadu_ps(plane + i); };
+  for (; i + 8 <= end; i += 8) {
+    detail::store_pairs(at(s.nx), at(s.ny), out.w[0] + i);
+    detail::store_pairs(at(s.nz), at(p.length), out.w[1] + i);
+    detail::store_pairs(at(f.r), at(f.g), out.w[2] + i);
+    detail::store_pairs(at(f.b), at(e.r), out.w[3] + i);
+    detail::store_pairs(at(e.g), at(e.b), out.w[4] + i);
   }
 #endif
-  for (; x < p.width; ++x) {
-    const size_t i = first + size_t(x);
-    out.set(i, vec3(nx[x], ny[x], nz[x]), length[x], f.get(i), e.get(i));
-  }
+  for (; i < end; ++i) out.set(i, s.normal(i), p.length[i], f.get(i), e.get(i));
 }
 
 }  // namespace bounce::denoise
